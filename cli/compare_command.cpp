@@ -1,0 +1,250 @@
+// `aosuite compare A B`: Resemble.js 5.0.0's comparison of two PNGs, and `--batch` for many.
+#include <fmt/format.h>
+
+#include <cstring>
+#include <fstream>
+#include <future>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "cli/commands.hpp"
+#include "compare/image_io.hpp"
+#include "compare/resemble.hpp"
+#include "compare/resemble_json.hpp"
+
+namespace aosuite::cli {
+namespace {
+
+namespace rs = aosuite::resemble;
+
+struct CompareArgs {
+  std::string a, b, batch, diff, mode = "default", tolerance, error_type = "flat",
+                                 error_color, ignore_color, canvas_alpha = "none";
+  std::vector<std::string> bounding_boxes, ignored_boxes;
+  double large_image_threshold = 1200, return_early = 0, transparency = 1, threshold = 0;
+  bool json = false;
+};
+
+std::vector<double> numbers(const std::string& text, std::size_t min, std::size_t max,
+                            const char* what) {
+  std::vector<double> out;
+  std::size_t pos = 0;
+  while (pos <= text.size()) {
+    const std::size_t comma = std::min(text.find(',', pos), text.size());
+    const std::string item = text.substr(pos, comma - pos);
+    std::size_t used = 0;
+    double v = 0;
+    try {
+      v = std::stod(item, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used == 0 || used != item.size()) {
+      throw std::invalid_argument(fmt::format("{} '{}': '{}' is not a number", what, text, item));
+    }
+    out.push_back(v);
+    pos = comma + 1;
+  }
+  if (out.size() < min || out.size() > max) {
+    throw std::invalid_argument(fmt::format("{} '{}' needs {} to {} numbers", what, text, min, max));
+  }
+  return out;
+}
+
+std::vector<rs::Box> parse_boxes(const std::vector<std::string>& specs, const char* what) {
+  std::vector<rs::Box> out;
+  for (const auto& s : specs) {
+    const auto v = numbers(s, 4, 4, what);
+    out.push_back({v[0], v[1], v[2], v[3]});
+  }
+  return out;
+}
+
+rs::Options options_from(const CompareArgs& args) {
+  rs::Options o;
+  if (args.mode != "default") o.modes = {rs::parse_mode(args.mode)};
+  if (!args.tolerance.empty()) {
+    nlohmann::json t;
+    try {
+      t = nlohmann::json::parse(args.tolerance);
+    } catch (const nlohmann::json::exception& e) {
+      throw std::invalid_argument(fmt::format("--tolerance is not JSON: {}", e.what()));
+    }
+    rs::apply_json_options({{"tolerance", t}}, o);
+  }
+  o.large_image_threshold = args.large_image_threshold;
+  o.error_type = rs::parse_error_type(args.error_type);
+  if (!args.error_color.empty()) {
+    const auto c = numbers(args.error_color, 3, 4, "--error-color");
+    o.error_color = {c[0], c[1], c[2], c.size() == 4 ? c[3] : 255};
+  }
+  o.transparency = args.transparency;
+  if (!args.bounding_boxes.empty()) o.bounding_boxes = parse_boxes(args.bounding_boxes, "--bounding-box");
+  if (!args.ignored_boxes.empty()) o.ignored_boxes = parse_boxes(args.ignored_boxes, "--ignored-box");
+  if (!args.ignore_color.empty()) {
+    const auto c = numbers(args.ignore_color, 3, 4, "--ignore-areas-colored-with");
+    o.ignore_areas_colored_with = rs::Color{c[0], c[1], c[2], 255};
+  }
+  o.return_early_threshold = args.return_early;
+  o.canvas_alpha = parse_canvas_alpha(args.canvas_alpha);
+  return o;
+}
+
+// Reads both files, decoding the second on another thread; identical bytes decode once.
+std::pair<cv::Mat, cv::Mat> load_pair(const std::string& a, const std::string& b) {
+  auto bytes_b = std::async(std::launch::async, [&] { return read_file(b); });
+  const std::vector<unsigned char> bytes_a = read_file(a);
+  const std::vector<unsigned char> bb = bytes_b.get();
+  if (bytes_a == bb) {
+    cv::Mat img = decode_png_rgba8(bytes_a, a);
+    return {img, img};
+  }
+  auto img_b = std::async(std::launch::async, [&] { return decode_png_rgba8(bb, b); });
+  cv::Mat img_a = decode_png_rgba8(bytes_a, a);
+  return {img_a, img_b.get()};
+}
+
+bool passes(const rs::Result& r, double threshold) {
+  return r.same_dimensions && r.raw_mismatch_percentage <= threshold;
+}
+
+rs::Result compare_files(const std::string& a, const std::string& b, rs::Options o,
+                         const std::string& diff_path) {
+  o.produce_diff = !diff_path.empty();
+  const auto [img_a, img_b] = load_pair(a, b);
+  rs::Result r = rs::compare(img_a, img_b, o);
+  if (!diff_path.empty()) {
+    if (r.diff.empty()) {
+      throw std::invalid_argument("no diff image: --return-early-threshold disables it");
+    }
+    write_png_rgba8(diff_path, r.diff);
+  }
+  return r;
+}
+
+void print_human(const std::string& a, const std::string& b, const rs::Result& r, bool pass) {
+  fmt::print("{} vs {}: {}% mismatch ({} pixels)", a, b, r.mismatch_percentage, r.mismatch_count);
+  if (!r.same_dimensions) {
+    fmt::print(", sizes differ by {}x{}", r.width_difference, r.height_difference);
+  }
+  if (r.mismatch_count) {
+    const rs::Bounds& d = r.diff_bounds;
+    fmt::print(", bounds x {}..{} y {}..{}", d.left, d.right, d.top, d.bottom);
+  }
+  fmt::print(" -> {}\n", pass ? "same" : "different");
+}
+
+int run_single(const CompareArgs& args) {
+  const rs::Result r = compare_files(args.a, args.b, options_from(args), args.diff);
+  const bool pass = passes(r, args.threshold);
+  if (args.json) {
+    fmt::print("{}\n", rs::result_json(r));
+  } else {
+    print_human(args.a, args.b, r, pass);
+  }
+  return pass ? kExitSame : kExitDifferent;
+}
+
+// resemble-oracle's batch format: `A<TAB>B`, `A B`, or a JSON object with a, b, id, diff
+// (or diffRaw) and option keys. Blank lines and # comments are skipped.
+int run_batch(const CompareArgs& args) {
+  std::ifstream file;
+  if (args.batch != "-") {
+    file.open(args.batch);
+    if (!file) throw FileError(fmt::format("{}: cannot open batch file", args.batch));
+  }
+  std::istream& in = args.batch == "-" ? std::cin : file;
+  const rs::Options defaults = options_from(args);
+  int worst = kExitSame;
+  std::string line;
+  for (int line_no = 1; std::getline(in, line); ++line_no) {
+    const std::size_t first = line.find_first_not_of(" \t\r");
+    if (first == std::string::npos || line[first] == '#') continue;
+    nlohmann::ordered_json extra = nlohmann::ordered_json::object();
+    try {
+      rs::Options o = defaults;
+      std::string a, b, diff;
+      if (line[first] == '{') {
+        const auto j = nlohmann::json::parse(line);
+        a = j.value("a", ""), b = j.value("b", "");
+        diff = j.value("diffRaw", j.value("diff", ""));
+        if (j.contains("id")) extra["id"] = j["id"];
+        rs::apply_json_options(j, o);
+      } else {
+        const std::size_t sep = line.find('\t') != std::string::npos ? line.find('\t')
+                                                                     : line.find(' ', first);
+        if (sep == std::string::npos) throw std::invalid_argument("expected two paths");
+        a = line.substr(first, sep - first);
+        b = line.substr(line.find_first_not_of(" \t", sep));
+        b.erase(b.find_last_not_of(" \t\r") + 1);
+      }
+      if (a.empty() || b.empty()) throw std::invalid_argument("needs both 'a' and 'b'");
+      extra["a"] = a, extra["b"] = b;
+      const rs::Result r = compare_files(a, b, o, diff);
+      fmt::print("{}\n", rs::result_json(r, extra));
+      if (!passes(r, args.threshold)) worst = std::max(worst, kExitDifferent);
+    } catch (const std::exception& e) {
+      extra["error"] = fmt::format("{}: line {}: {}", args.batch, line_no, e.what());
+      fmt::print("{}\n", extra.dump());
+      worst = kExitError;
+    }
+  }
+  return worst;
+}
+
+}  // namespace
+
+void add_compare_command(CLI::App& app, int& rc) {
+  auto args = std::make_shared<CompareArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "compare",
+      "Compare two PNGs exactly as Resemble.js 5.0.0 does.\n"
+      "Exit status: 0 same (mismatch <= --threshold and same size), 1 different, 2 error.");
+  cmd->add_option("a", args->a, "first image (PNG)");
+  cmd->add_option("b", args->b, "second image (PNG)");
+  cmd->add_option("--batch", args->batch,
+                  "compare the pairs listed in FILE (- for stdin), one JSON line out per pair; "
+                  "the format of resemble-oracle --batch");
+  cmd->add_option("--mode", args->mode, "default|nothing|less|colors|antialiasing|alpha")
+      ->capture_default_str();
+  cmd->add_option("--tolerance", args->tolerance,
+                  R"(JSON, e.g. '{"red":4,"minBrightness":4}'; like Resemble, only with a --mode)");
+  cmd->add_option("--error-type", args->error_type,
+                  "flat|movement|flatDifferenceIntensity|movementDifferenceIntensity|diffOnly")
+      ->capture_default_str();
+  cmd->add_option("--error-color", args->error_color, "R,G,B[,A] (default 255,0,255,255)");
+  cmd->add_option("--transparency", args->transparency, "alpha factor of non-error pixels")
+      ->capture_default_str();
+  cmd->add_option("--bounding-box", args->bounding_boxes, "L,T,R,B: compare only inside (repeatable)");
+  cmd->add_option("--ignored-box", args->ignored_boxes, "L,T,R,B: do not compare inside (repeatable)");
+  cmd->add_option("--ignore-areas-colored-with", args->ignore_color,
+                  "R,G,B: do not compare where the second image has this colour");
+  cmd->add_option("--large-image-threshold", args->large_image_threshold,
+                  "sample every 6th row/column above this size in antialiasing mode; 0 = never")
+      ->capture_default_str();
+  cmd->add_option("--return-early-threshold", args->return_early,
+                  "stop once the mismatch % exceeds this (no diff image)");
+  cmd->add_option("--canvas-alpha", args->canvas_alpha,
+                  "what a canvas does to translucent pixels: none|chromium|node-canvas")
+      ->capture_default_str();
+  cmd->add_option("--diff", args->diff, "write the diff image (Resemble's raw buffer) as PNG");
+  cmd->add_option("--threshold", args->threshold, "largest mismatch % still judged the same")
+      ->capture_default_str();
+  cmd->add_flag("--json", args->json, "print Resemble's result object as one JSON line");
+  cmd->callback([args, &rc] {
+    if (args->batch.empty() && (args->a.empty() || args->b.empty())) {
+      throw CLI::ValidationError("compare", "needs two images, or --batch FILE");
+    }
+    try {
+      rc = args->batch.empty() ? run_single(*args) : run_batch(*args);
+    } catch (const std::exception& e) {
+      fmt::print(stderr, "aosuite compare: {}\n", e.what());
+      rc = kExitError;
+    }
+  });
+}
+
+}  // namespace aosuite::cli

@@ -1,0 +1,27 @@
+// What a 2D canvas does to a decoded image before Resemble.js sees it. Canvases store
+// premultiplied 8-bit colour, so translucent pixels come back from getImageData slightly
+// changed. Opaque pixels are never touched. Models measured against the real engines by
+// ../shared/oracle (see its README, "Caveats").
+#pragma once
+
+#include <opencv2/core.hpp>
+#include <string_view>
+
+namespace aosuite {
+
+enum class CanvasAlpha {
+  kNone,      // compare the PNG's own bytes (what Resemble sees for opaque images)
+  kChromium,  // Resemble.js in Chromium: premultiply, unpremultiply in float32
+  kNodeCanvas // Resemble.js in Node with node-canvas 2.x: unpremultiply truncates
+};
+
+CanvasAlpha parse_canvas_alpha(std::string_view name);  // throws std::invalid_argument
+
+// The drawImage + getImageData round trip, in place on CV_8UC4.
+void apply_canvas_decode(cv::Mat& rgba, CanvasAlpha model);
+
+// node-canvas's extra putImageData + getImageData round trip that Resemble's normalise()
+// applies to images padded to a common size. The identity in Chromium.
+void apply_canvas_put_get(cv::Mat& rgba, CanvasAlpha model);
+
+}  // namespace aosuite

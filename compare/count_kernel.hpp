@@ -1,0 +1,24 @@
+// The hot loop of the common case (no diff image, no antialiasing, no areas): count the
+// pixels whose channel difference reaches a per-channel threshold and bound them.
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+namespace aosuite {
+
+struct MismatchTally {
+  std::uint64_t count = 0;
+  int top = 0, left = 0, bottom = 0, right = 0;  // valid when count > 0
+};
+
+// a and b are tightly packed RGBA8 images of width x height. A pixel mismatches when, for
+// some channel c, |a_c - b_c| >= min_delta[c]; min_delta in [1, 256] (256: never).
+MismatchTally count_mismatches(const unsigned char* a, const unsigned char* b, int width,
+                               int height, const std::array<int, 4>& min_delta);
+
+// Plain per-pixel reference of the same function, for tests and benchmarks.
+MismatchTally count_mismatches_scalar(const unsigned char* a, const unsigned char* b, int width,
+                                      int height, const std::array<int, 4>& min_delta);
+
+}  // namespace aosuite

@@ -1,0 +1,150 @@
+#include "compare/image_io.hpp"
+
+#include <fcntl.h>
+#include <spng.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <fmt/format.h>
+#include <fmt/std.h>
+#include <memory>
+
+namespace aosuite {
+namespace {
+
+struct SpngDeleter {
+  void operator()(spng_ctx* ctx) const { spng_ctx_free(ctx); }
+};
+using SpngCtx = std::unique_ptr<spng_ctx, SpngDeleter>;
+
+constexpr unsigned char kPngSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+
+[[noreturn]] void fail_errno(const std::filesystem::path& path, const char* what) {
+  throw FileError(fmt::format("{}: {}: {}", path.string(), what, std::strerror(errno)));
+}
+
+struct Fd {
+  int fd;
+  ~Fd() {
+    if (fd >= 0) ::close(fd);
+  }
+};
+
+}  // namespace
+
+std::vector<unsigned char> read_file(const std::filesystem::path& path) {
+  Fd f{::open(path.c_str(), O_RDONLY | O_CLOEXEC)};
+  if (f.fd < 0) fail_errno(path, "cannot open");
+  struct stat st {};
+  if (::fstat(f.fd, &st) != 0) fail_errno(path, "cannot stat");
+  if (S_ISDIR(st.st_mode)) throw FileError(fmt::format("{}: is a directory", path.string()));
+  std::vector<unsigned char> bytes(static_cast<std::size_t>(st.st_size));
+  std::size_t done = 0;
+  while (done < bytes.size()) {
+    const ssize_t n = ::read(f.fd, bytes.data() + done, bytes.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) fail_errno(path, "cannot read");
+    if (n == 0) break;
+    done += static_cast<std::size_t>(n);
+  }
+  bytes.resize(done);
+  return bytes;
+}
+
+void write_file_atomic(const std::filesystem::path& path, std::span<const unsigned char> bytes) {
+  const std::filesystem::path dir = path.has_parent_path() ? path.parent_path() : ".";
+  std::string tmp = (dir / fmt::format(".{}.tmp-XXXXXX", path.filename().string())).string();
+  Fd f{::mkstemp(tmp.data())};
+  if (f.fd < 0) fail_errno(path, "cannot create a temporary file beside it");
+  auto abandon = [&](const char* what) {
+    const int saved = errno;
+    ::unlink(tmp.c_str());
+    errno = saved;
+    fail_errno(path, what);
+  };
+  std::size_t done = 0;
+  while (done < bytes.size()) {
+    const ssize_t n = ::write(f.fd, bytes.data() + done, bytes.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) abandon("cannot write");
+    done += static_cast<std::size_t>(n);
+  }
+  // mkstemp creates 0600; give the file the permissions a plain create would.
+  const mode_t mask = ::umask(0);
+  ::umask(mask);
+  if (::fchmod(f.fd, 0666 & ~mask) != 0 || ::fsync(f.fd) != 0) abandon("cannot finish writing");
+  if (::close(f.fd) != 0) {
+    f.fd = -1;
+    abandon("cannot close");
+  }
+  f.fd = -1;
+  if (::rename(tmp.c_str(), path.c_str()) != 0) abandon("cannot rename into place");
+}
+
+cv::Mat decode_png_rgba8(std::span<const unsigned char> png, const std::string& name) {
+  if (png.size() < sizeof kPngSignature ||
+      std::memcmp(png.data(), kPngSignature, sizeof kPngSignature) != 0) {
+    throw FileError(fmt::format("{}: not a PNG file", name));
+  }
+  SpngCtx ctx(spng_ctx_new(0));
+  if (!ctx) throw FileError(fmt::format("{}: out of memory", name));
+  auto check = [&](int rc, const char* stage) {
+    if (rc != 0) {
+      throw FileError(fmt::format("{}: {} ({}): truncated or corrupt PNG?", name, stage,
+                                  spng_strerror(rc)));
+    }
+  };
+  check(spng_set_png_buffer(ctx.get(), png.data(), png.size()), "cannot read");
+  // Bound ancillary chunks too, so a hostile file cannot make us allocate gigabytes.
+  check(spng_set_chunk_limits(ctx.get(), 64u << 20, 64u << 20), "cannot read");
+  spng_ihdr ihdr{};
+  check(spng_get_ihdr(ctx.get(), &ihdr), "bad PNG header");
+  const std::uint64_t pixels = std::uint64_t{ihdr.width} * ihdr.height;
+  if (ihdr.width > 65535 || ihdr.height > 65535 || pixels > kMaxImagePixels) {
+    throw FileError(fmt::format("{}: {}x{} pixels is larger than the {} Mpixel limit", name,
+                                ihdr.width, ihdr.height, kMaxImagePixels >> 20));
+  }
+  std::size_t size = 0;
+  check(spng_decoded_image_size(ctx.get(), SPNG_FMT_RGBA8, &size), "cannot decode");
+  cv::Mat rgba(static_cast<int>(ihdr.height), static_cast<int>(ihdr.width), CV_8UC4);
+  check(spng_decode_image(ctx.get(), rgba.data, size, SPNG_FMT_RGBA8, SPNG_DECODE_TRNS),
+        "cannot decode");
+  return rgba;
+}
+
+cv::Mat read_png_rgba8(const std::filesystem::path& path) {
+  return decode_png_rgba8(read_file(path), path.string());
+}
+
+std::vector<unsigned char> encode_png_rgba8(const cv::Mat& rgba, int compression_level) {
+  CV_Assert(rgba.type() == CV_8UC4 && rgba.isContinuous());
+  SpngCtx ctx(spng_ctx_new(SPNG_CTX_ENCODER));
+  if (!ctx) throw FileError("PNG encoder: out of memory");
+  spng_set_option(ctx.get(), SPNG_ENCODE_TO_BUFFER, 1);
+  spng_set_option(ctx.get(), SPNG_IMG_COMPRESSION_LEVEL, compression_level);
+  spng_ihdr ihdr{};
+  ihdr.width = static_cast<std::uint32_t>(rgba.cols);
+  ihdr.height = static_cast<std::uint32_t>(rgba.rows);
+  ihdr.bit_depth = 8;
+  ihdr.color_type = SPNG_COLOR_TYPE_TRUECOLOR_ALPHA;
+  int rc = spng_set_ihdr(ctx.get(), &ihdr);
+  if (rc == 0) {
+    rc = spng_encode_image(ctx.get(), rgba.data, rgba.total() * 4, SPNG_FMT_PNG,
+                           SPNG_ENCODE_FINALIZE);
+  }
+  std::size_t len = 0;
+  std::unique_ptr<void, decltype(&std::free)> buf(
+      rc == 0 ? spng_get_png_buffer(ctx.get(), &len, &rc) : nullptr, &std::free);
+  if (rc != 0 || !buf) throw FileError(fmt::format("PNG encoder: {}", spng_strerror(rc)));
+  const auto* p = static_cast<const unsigned char*>(buf.get());
+  return {p, p + len};
+}
+
+void write_png_rgba8(const std::filesystem::path& path, const cv::Mat& rgba,
+                     int compression_level) {
+  write_file_atomic(path, encode_png_rgba8(rgba, compression_level));
+}
+
+}  // namespace aosuite

@@ -1,0 +1,40 @@
+// PNG and file I/O for the comparator: 8-bit RGBA in, 8-bit RGBA out, nothing else.
+// libspng keeps the PNG path free of OpenImageIO's ~350 ms process start-up cost.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <opencv2/core.hpp>
+#include <span>
+#include <stdexcept>
+#include <vector>
+
+namespace aosuite {
+
+// An error about one file. what() is a single line that names the file and the problem.
+class FileError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Images larger than this are refused before any pixel memory is allocated: 2^28 pixels is
+// 1 GiB of RGBA8, already far beyond any render this suite makes.
+inline constexpr std::uint64_t kMaxImagePixels = std::uint64_t{1} << 28;
+
+std::vector<unsigned char> read_file(const std::filesystem::path& path);
+
+// Writes via a temporary file in the same directory and rename(2), so readers only ever see
+// the old file or the complete new one.
+void write_file_atomic(const std::filesystem::path& path, std::span<const unsigned char> bytes);
+
+// Decodes any PNG (grey, palette, 16-bit, tRNS, ...) to CV_8UC4 RGBA. No gamma or colour
+// management is applied. `name` is only used in error messages.
+cv::Mat decode_png_rgba8(std::span<const unsigned char> png, const std::string& name);
+cv::Mat read_png_rgba8(const std::filesystem::path& path);
+
+std::vector<unsigned char> encode_png_rgba8(const cv::Mat& rgba, int compression_level);
+// compression_level 1..9 (zlib); 3 is the usual speed/size knee for diff images.
+void write_png_rgba8(const std::filesystem::path& path, const cv::Mat& rgba,
+                     int compression_level = 3);
+
+}  // namespace aosuite

@@ -1,0 +1,392 @@
+#include "compare/resemble.hpp"
+
+#include <opencv2/core/utility.hpp>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <mutex>
+#include <stdexcept>
+#include <string>
+
+#include "compare/count_kernel.hpp"
+#include "compare/js_number.hpp"
+
+namespace aosuite::resemble {
+
+Mode parse_mode(std::string_view name) {
+  if (name == "default") return Mode::kDefault;
+  if (name == "nothing") return Mode::kNothing;
+  if (name == "less") return Mode::kLess;
+  if (name == "colors") return Mode::kColors;
+  if (name == "antialiasing") return Mode::kAntialiasing;
+  if (name == "alpha") return Mode::kAlpha;
+  throw std::invalid_argument("unknown mode '" + std::string(name) +
+                              "' (expected nothing, less, colors, antialiasing or alpha)");
+}
+
+std::string_view mode_name(Mode mode) {
+  switch (mode) {
+    case Mode::kDefault: return "default";
+    case Mode::kNothing: return "nothing";
+    case Mode::kLess: return "less";
+    case Mode::kColors: return "colors";
+    case Mode::kAntialiasing: return "antialiasing";
+    case Mode::kAlpha: return "alpha";
+  }
+  return "default";
+}
+
+ErrorType parse_error_type(std::string_view name) {
+  if (name == "movement") return ErrorType::kMovement;
+  if (name == "flatDifferenceIntensity") return ErrorType::kFlatDifferenceIntensity;
+  if (name == "movementDifferenceIntensity") return ErrorType::kMovementDifferenceIntensity;
+  if (name == "diffOnly") return ErrorType::kDiffOnly;
+  return ErrorType::kFlat;
+}
+
+Settings resolve(const Options& options) {
+  Settings s;
+  Tolerance& t = s.tolerance;
+  for (Mode mode : options.modes) {
+    // Resemble's ignoreX() setters (resemble.js 867-943); colors keeps the RGB tolerances.
+    switch (mode) {
+      case Mode::kDefault:
+        continue;  // not a Resemble mode: sets nothing, applies no custom tolerance
+      case Mode::kNothing: t = {0, 0, 0, 0, 0, 255}; break;
+      case Mode::kLess: t = {16, 16, 16, 16, 16, 240}; break;
+      case Mode::kAntialiasing: t = {32, 32, 32, 32, 64, 96}; break;
+      case Mode::kAlpha: t = {16, 16, 16, 255, 16, 240}; break;
+      case Mode::kColors:
+        t.alpha = 16;
+        t.min_brightness = 16;
+        t.max_brightness = 240;
+        break;
+    }
+    s.ignore_antialiasing = mode == Mode::kAntialiasing;
+    s.ignore_colors = mode == Mode::kColors;
+    // setupCustomTolerance() runs after every applied mode.
+    const ToleranceOverride& o = options.tolerance;
+    t.red = o.red.value_or(t.red);
+    t.green = o.green.value_or(t.green);
+    t.blue = o.blue.value_or(t.blue);
+    t.alpha = o.alpha.value_or(t.alpha);
+    t.min_brightness = o.min_brightness.value_or(t.min_brightness);
+    t.max_brightness = o.max_brightness.value_or(t.max_brightness);
+  }
+  return s;
+}
+
+namespace {
+
+struct Px {
+  int r, g, b, a;
+};
+
+Px load(const unsigned char* p) { return {p[0], p[1], p[2], p[3]}; }
+
+// Resemble's isColorSimilar: equal, or strictly closer than the tolerance.
+bool similar(double a, double b, double tol) { return a == b || std::abs(a - b) < tol; }
+
+double brightness(const Px& p) { return 0.3 * p.r + 0.59 * p.g + 0.11 * p.b; }
+
+// HSL hue as resemble.js computes it: the "/ 6" sits in an unreachable branch, so the
+// range is [0, 6), greys are 0 and ties go to red, then green.
+double hue(const Px& p) {
+  const double r = p.r / 255.0, g = p.g / 255.0, b = p.b / 255.0;
+  const double mx = std::max({r, g, b}), mn = std::min({r, g, b});
+  if (mx == mn) return 0;
+  const double d = mx - mn;
+  if (mx == r) return (g - b) / d + (g < b ? 6 : 0);
+  if (mx == g) return (b - r) / d + 2;
+  return (r - g) / d + 4;
+}
+
+double colors_distance(const Px& p, double r, double g, double b) {
+  return (std::abs(p.r - r) + std::abs(p.g - g) + std::abs(p.b - b)) / 3;
+}
+
+// Storing a double into a Uint8ClampedArray: NaN and negatives give 0, ties go to even.
+unsigned char u8clamp(double x) {
+  if (!(x > 0)) return 0;
+  if (x >= 255) return 255;
+  return static_cast<unsigned char>(std::nearbyint(x));
+}
+
+// JavaScript's `v || fallback` for a number.
+double or_default(double v, double fallback) { return (v == 0 || std::isnan(v)) ? fallback : v; }
+
+class PixelJudge {
+ public:
+  PixelJudge(const cv::Mat& d1, const cv::Mat& d2, const Options& o, const Settings& s)
+      : d1_(d1.data), d2_(d2.data), w_(d1.cols), h_(d1.rows), o_(o), s_(s) {}
+
+  // Resemble's per-pixel body (resemble.js 598-654). Paints into diff when it is non-null;
+  // returns true for a mismatch.
+  bool judge(int x, int y, unsigned char* diff) const {
+    const std::size_t off = (std::size_t(y) * w_ + x) * 4;
+    const Px p1 = load(d1_ + off), p2 = load(d2_ + off);
+    const bool area = in_area(x, y, p2);
+    unsigned char* out = diff ? diff + off : nullptr;
+    if (s_.ignore_colors) {
+      if (brightness_similar(p1, p2) || !area) return ok(out, p2, true);
+      return error(out, p1, p2);
+    }
+    if (rgb_similar(p1, p2) || !area) return ok(out, p1, false);
+    if (s_.ignore_antialiasing && (antialiased(d1_, p1, x, y) || antialiased(d2_, p2, x, y))) {
+      if (brightness_similar(p1, p2)) return ok(out, p2, true);
+    }
+    return error(out, p1, p2);
+  }
+
+ private:
+  bool rgb_similar(const Px& p1, const Px& p2) const {
+    const Tolerance& t = s_.tolerance;
+    return similar(p1.r, p2.r, t.red) && similar(p1.g, p2.g, t.green) &&
+           similar(p1.b, p2.b, t.blue) && similar(p1.a, p2.a, t.alpha);
+  }
+
+  bool brightness_similar(const Px& p1, const Px& p2) const {
+    return similar(p1.a, p2.a, s_.tolerance.alpha) &&
+           similar(brightness(p1), brightness(p2), s_.tolerance.min_brightness);
+  }
+
+  bool within(int x, int y, const Box& b) const {
+    return x > or_default(b.left, 0) && x < or_default(b.right, w_) && y > or_default(b.top, 0) &&
+           y < or_default(b.bottom, h_);
+  }
+
+  bool in_area(int x, int y, const Px& p2) const {
+    if (o_.ignore_areas_colored_with) {
+      const Color& c = *o_.ignore_areas_colored_with;
+      return colors_distance(p2, c.r, c.g, c.b) != 0;
+    }
+    auto inside = [&](const Box& b) { return within(x, y, b); };
+    if (o_.bounding_boxes && std::none_of(o_.bounding_boxes->begin(), o_.bounding_boxes->end(),
+                                          inside)) {
+      return false;
+    }
+    return !(o_.ignored_boxes &&
+             std::any_of(o_.ignored_boxes->begin(), o_.ignored_boxes->end(), inside));
+  }
+
+  // resemble.js isAntialiased: the 3x3 neighbourhood by *linear* index, so x - 1 at the
+  // left edge reads the previous row's last pixel; indices past the end are skipped and
+  // negative ones read `undefined`, which counts for nothing.
+  bool antialiased(const unsigned char* img, const Px& src, int x, int y) const {
+    const double sb = brightness(src), sh = hue(src);
+    const long long len = static_cast<long long>(w_) * h_;
+    int contrast = 0, hue_diff = 0, equal = 0;
+    for (int i = -1; i <= 1; ++i) {
+      for (int j = -1; j <= 1; ++j) {
+        if (i == 0 && j == 0) continue;
+        const long long idx = static_cast<long long>(y + j) * w_ + (x + i);
+        if (idx < 0 || idx >= len) continue;
+        const Px t = load(img + idx * 4);
+        if (std::abs(sb - brightness(t)) > s_.tolerance.max_brightness) ++contrast;
+        if (t.r == src.r && t.g == src.g && t.b == src.b) ++equal;
+        if (std::abs(hue(t) - sh) > 0.3) ++hue_diff;
+        if (hue_diff > 1 || contrast > 1) return true;
+      }
+    }
+    return equal < 2;
+  }
+
+  bool ok(unsigned char* out, const Px& p, bool grey) const {
+    if (!out || o_.error_type == ErrorType::kDiffOnly) return false;
+    if (grey) {
+      out[0] = out[1] = out[2] = u8clamp(brightness(p));
+    } else {
+      out[0] = static_cast<unsigned char>(p.r);
+      out[1] = static_cast<unsigned char>(p.g);
+      out[2] = static_cast<unsigned char>(p.b);
+    }
+    out[3] = u8clamp(p.a * o_.transparency);
+    return false;
+  }
+
+  bool error(unsigned char* out, const Px& p1, const Px& p2) const {
+    if (!out) return true;
+    const Color& e = o_.error_color;
+    double v[4] = {e.r, e.g, e.b, e.a};
+    switch (o_.error_type) {
+      case ErrorType::kFlat: break;
+      case ErrorType::kMovement:
+        v[0] = (p2.r * (e.r / 255) + e.r) / 2;
+        v[1] = (p2.g * (e.g / 255) + e.g) / 2;
+        v[2] = (p2.b * (e.b / 255) + e.b) / 2;
+        v[3] = p2.a;
+        break;
+      case ErrorType::kFlatDifferenceIntensity:
+        v[3] = colors_distance(p1, p2.r, p2.g, p2.b);
+        break;
+      case ErrorType::kMovementDifferenceIntensity: {
+        const double k = (colors_distance(p1, p2.r, p2.g, p2.b) / 255) * 0.8;
+        v[0] = (1 - k) * (p2.r * (e.r / 255)) + k * e.r;
+        v[1] = (1 - k) * (p2.g * (e.g / 255)) + k * e.g;
+        v[2] = (1 - k) * (p2.b * (e.b / 255)) + k * e.b;
+        v[3] = p2.a;
+        break;
+      }
+      case ErrorType::kDiffOnly:
+        v[0] = p2.r, v[1] = p2.g, v[2] = p2.b, v[3] = p2.a;
+        break;
+    }
+    for (int c = 0; c < 4; ++c) out[c] = u8clamp(v[c]);
+    return true;
+  }
+
+  const unsigned char* d1_;
+  const unsigned char* d2_;
+  int w_, h_;
+  const Options& o_;
+  const Settings& s_;
+};
+
+struct Tally {
+  std::uint64_t count = 0;
+  Bounds b;
+  void add(int x, int y) {
+    b = count ? Bounds{std::min(b.top, y), std::min(b.left, x), std::max(b.bottom, y),
+                       std::max(b.right, x)}
+              : Bounds{y, x, y, x};
+    ++count;
+  }
+  void merge(const Tally& t) {
+    if (t.count == 0) return;
+    if (count == 0) {
+      *this = t;
+      return;
+    }
+    count += t.count;
+    b = {std::min(b.top, t.b.top), std::min(b.left, t.b.left), std::max(b.bottom, t.b.bottom),
+         std::max(b.right, t.b.right)};
+  }
+};
+
+// Resemble skips every sixth row and column of large images, in antialiasing mode only.
+bool skipped(int x, int y, bool skip) { return skip && (x % 6 == 0 || y % 6 == 0); }
+
+cv::Mat as_seen(const cv::Mat& img, int w, int h, CanvasAlpha model) {
+  CV_Assert(img.type() == CV_8UC4);
+  cv::Mat out = img.isContinuous() ? img : img.clone();
+  if (model != CanvasAlpha::kNone) {
+    if (out.data == img.data) out = img.clone();
+    apply_canvas_decode(out, model);
+  }
+  if (out.cols == w && out.rows == h) return out;
+  // The smaller image is padded right and bottom with transparent black (normalise()).
+  cv::Mat padded = cv::Mat::zeros(h, w, CV_8UC4);
+  out.copyTo(padded(cv::Rect(0, 0, out.cols, out.rows)));
+  apply_canvas_put_get(padded, model);
+  return padded;
+}
+
+// When Resemble returns early it stops after the first pixel, in its column-major order,
+// at which the running percentage exceeds the threshold. Our pass is row-major and
+// complete, so replay that order over the mismatch mask.
+Tally truncate_early(const cv::Mat& mask, bool skip, double threshold) {
+  const int w = mask.cols, h = mask.rows;
+  const double pixels = double(h) * double(w);
+  auto above = [&](std::uint64_t n) { return (double(n) / pixels) * 100 > threshold; };
+  std::vector<std::uint32_t> column(static_cast<std::size_t>(w), 0);
+  for (int y = 0; y < h; ++y) {
+    const unsigned char* row = mask.ptr<unsigned char>(y);
+    for (int x = 0; x < w; ++x) column[x] += row[x];
+  }
+  std::uint64_t seen = 0;
+  int stop_x = w, stop_y = h;
+  for (int x = 0; x < w && stop_x == w; ++x) {
+    if (!above(seen + column[x]) && !above(seen)) {
+      seen += column[x];
+      continue;
+    }
+    for (int y = 0; y < h; ++y) {
+      if (skipped(x, y, skip)) continue;
+      seen += mask.at<unsigned char>(y, x);
+      if (above(seen)) {
+        stop_x = x, stop_y = y;
+        break;
+      }
+    }
+  }
+  Tally t;
+  for (int y = 0; y < h; ++y) {
+    const unsigned char* row = mask.ptr<unsigned char>(y);
+    for (int x = 0; x < std::min(w, stop_x + 1); ++x) {
+      if (row[x] && (x < stop_x || y <= stop_y)) t.add(x, y);
+    }
+  }
+  return t;
+}
+
+}  // namespace
+
+Result compare(const cv::Mat& a, const cv::Mat& b, const Options& options) {
+  const auto start = std::chrono::steady_clock::now();
+  const Settings s = resolve(options);
+  const int w = std::max(a.cols, b.cols), h = std::max(a.rows, b.rows);
+  const cv::Mat d1 = as_seen(a, w, h, options.canvas_alpha);
+  const cv::Mat d2 = as_seen(b, w, h, options.canvas_alpha);
+
+  const double thr = options.large_image_threshold;
+  const bool skip = thr != 0 && !std::isnan(thr) && s.ignore_antialiasing && (w > thr || h > thr);
+  const double early = options.return_early_threshold;
+  const bool compare_only = early != 0 && !std::isnan(early);
+  const bool stops_early = compare_only && !s.ignore_colors;
+  const bool has_area = options.bounding_boxes || options.ignored_boxes ||
+                        options.ignore_areas_colored_with;
+
+  Result r;
+  Tally tally;
+  if (!s.ignore_colors && !s.ignore_antialiasing && !has_area &&
+      !(options.produce_diff && !compare_only) && !stops_early) {
+    // The common case: only thresholds decide, so the vectorised counter serves.
+    const Tolerance& t = s.tolerance;
+    std::array<int, 4> min_delta{};
+    const double tol[4] = {t.red, t.green, t.blue, t.alpha};
+    for (int c = 0; c < 4; ++c) {
+      int d = 1;
+      while (d < 256 && similar(0, d, tol[c])) ++d;
+      min_delta[c] = d;
+    }
+    const MismatchTally m = count_mismatches(d1.data, d2.data, w, h, min_delta);
+    tally.count = m.count;
+    tally.b = {m.top, m.left, m.bottom, m.right};
+  } else {
+    if (options.produce_diff && !compare_only) r.diff = cv::Mat::zeros(h, w, CV_8UC4);
+    cv::Mat mask;
+    if (stops_early) mask = cv::Mat::zeros(h, w, CV_8U);
+    const PixelJudge judge(d1, d2, options, s);
+    std::mutex m;
+    cv::parallel_for_(
+        cv::Range(0, h),
+        [&](const cv::Range& rows) {
+          Tally local;
+          unsigned char* diff = r.diff.empty() ? nullptr : r.diff.data;
+          for (int y = rows.start; y < rows.end; ++y) {
+            for (int x = 0; x < w; ++x) {
+              if (skipped(x, y, skip) || !judge.judge(x, y, diff)) continue;
+              local.add(x, y);
+              if (!mask.empty()) mask.at<unsigned char>(y, x) = 1;
+            }
+          }
+          std::lock_guard lock(m);
+          tally.merge(local);
+        },
+        std::max(1.0, double(w) * h / (1 << 16)));
+    if (stops_early) tally = truncate_early(mask, skip, early);
+  }
+
+  r.mismatch_count = tally.count;
+  r.raw_mismatch_percentage = (double(tally.count) / (double(h) * double(w))) * 100;
+  r.mismatch_percentage = js_to_fixed2(r.raw_mismatch_percentage);
+  r.same_dimensions = a.cols == b.cols && a.rows == b.rows;
+  r.width_difference = a.cols - b.cols;
+  r.height_difference = a.rows - b.rows;
+  r.diff_bounds = tally.count ? tally.b : Bounds{h, w, 0, 0};
+  r.analysis_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return r;
+}
+
+}  // namespace aosuite::resemble
