@@ -21,8 +21,8 @@ namespace {
 namespace rs = aosuite::resemble;
 
 struct CompareArgs {
-  std::string a, b, batch, diff, mode = "default", tolerance, error_type = "flat",
-                                 error_color, ignore_color, canvas_alpha = "none";
+  std::string a, b, batch, diff, mode = "default", tolerance, error_type = "flat", error_color,
+                                 ignore_color, canvas_alpha = "none";
   std::vector<std::string> bounding_boxes, ignored_boxes;
   double large_image_threshold = 1200, return_early = 0, transparency = 1, threshold = 0;
   bool json = false;
@@ -49,7 +49,8 @@ std::vector<double> numbers(const std::string& text, std::size_t min, std::size_
     pos = comma + 1;
   }
   if (out.size() < min || out.size() > max) {
-    throw std::invalid_argument(fmt::format("{} '{}' needs {} to {} numbers", what, text, min, max));
+    throw std::invalid_argument(
+        fmt::format("{} '{}' needs {} to {} numbers", what, text, min, max));
   }
   return out;
 }
@@ -82,8 +83,10 @@ rs::Options options_from(const CompareArgs& args) {
     o.error_color = {c[0], c[1], c[2], c.size() == 4 ? c[3] : 255};
   }
   o.transparency = args.transparency;
-  if (!args.bounding_boxes.empty()) o.bounding_boxes = parse_boxes(args.bounding_boxes, "--bounding-box");
-  if (!args.ignored_boxes.empty()) o.ignored_boxes = parse_boxes(args.ignored_boxes, "--ignored-box");
+  if (!args.bounding_boxes.empty())
+    o.bounding_boxes = parse_boxes(args.bounding_boxes, "--bounding-box");
+  if (!args.ignored_boxes.empty())
+    o.ignored_boxes = parse_boxes(args.ignored_boxes, "--ignored-box");
   if (!args.ignore_color.empty()) {
     const auto c = numbers(args.ignore_color, 3, 4, "--ignore-areas-colored-with");
     o.ignore_areas_colored_with = rs::Color{c[0], c[1], c[2], 255};
@@ -174,8 +177,8 @@ int run_batch(const CompareArgs& args) {
         if (j.contains("id")) extra["id"] = j["id"];
         rs::apply_json_options(j, o);
       } else {
-        const std::size_t sep = line.find('\t') != std::string::npos ? line.find('\t')
-                                                                     : line.find(' ', first);
+        const std::size_t sep =
+            line.find('\t') != std::string::npos ? line.find('\t') : line.find(' ', first);
         if (sep == std::string::npos) throw std::invalid_argument("expected two paths");
         a = line.substr(first, sep - first);
         b = line.substr(line.find_first_not_of(" \t", sep));
@@ -218,8 +221,10 @@ void add_compare_command(CLI::App& app, int& rc) {
   cmd->add_option("--error-color", args->error_color, "R,G,B[,A] (default 255,0,255,255)");
   cmd->add_option("--transparency", args->transparency, "alpha factor of non-error pixels")
       ->capture_default_str();
-  cmd->add_option("--bounding-box", args->bounding_boxes, "L,T,R,B: compare only inside (repeatable)");
-  cmd->add_option("--ignored-box", args->ignored_boxes, "L,T,R,B: do not compare inside (repeatable)");
+  cmd->add_option("--bounding-box", args->bounding_boxes,
+                  "L,T,R,B: compare only inside (repeatable)");
+  cmd->add_option("--ignored-box", args->ignored_boxes,
+                  "L,T,R,B: do not compare inside (repeatable)");
   cmd->add_option("--ignore-areas-colored-with", args->ignore_color,
                   "R,G,B: do not compare where the second image has this colour");
   cmd->add_option("--large-image-threshold", args->large_image_threshold,

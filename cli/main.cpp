@@ -1,6 +1,7 @@
 // aosuite: a thin command line over the library; each subcommand lives in its own file.
-#include <exception>
 #include <fmt/format.h>
+
+#include <exception>
 
 #include "cli/commands.hpp"
 

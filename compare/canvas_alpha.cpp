@@ -43,8 +43,9 @@ const Table& table() {
     Table out{};
     for (int a = 0; a < 256; ++a) {
       for (int v = 0; v < 256; ++v) {
-        out[static_cast<std::size_t>(a * 256 + v)] =
-            a == 0 ? 0 : a == 255 ? static_cast<unsigned char>(v) : F(v, a);
+        out[static_cast<std::size_t>(a * 256 + v)] = a == 0     ? 0
+                                                     : a == 255 ? static_cast<unsigned char>(v)
+                                                                : F(v, a);
       }
     }
     return out;

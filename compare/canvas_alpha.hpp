@@ -10,9 +10,9 @@
 namespace aosuite {
 
 enum class CanvasAlpha {
-  kNone,      // compare the PNG's own bytes (what Resemble sees for opaque images)
-  kChromium,  // Resemble.js in Chromium: premultiply, unpremultiply in float32
-  kNodeCanvas // Resemble.js in Node with node-canvas 2.x: unpremultiply truncates
+  kNone,       // compare the PNG's own bytes (what Resemble sees for opaque images)
+  kChromium,   // Resemble.js in Chromium: premultiply, unpremultiply in float32
+  kNodeCanvas  // Resemble.js in Node with node-canvas 2.x: unpremultiply truncates
 };
 
 CanvasAlpha parse_canvas_alpha(std::string_view name);  // throws std::invalid_argument

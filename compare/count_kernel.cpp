@@ -1,9 +1,9 @@
 #include "compare/count_kernel.hpp"
 
-#include <opencv2/core/utility.hpp>
 #include <algorithm>
 #include <cstring>
 #include <mutex>
+#include <opencv2/core/utility.hpp>
 
 namespace aosuite {
 namespace {
@@ -47,8 +47,10 @@ void merge(MismatchTally& into, const MismatchTally& t) {
 
 // Counts a row's mismatching pixels 16 at a time. AVX2 and baseline SSE2 clones are built;
 // the loader picks one for the machine.
-__attribute__((target_clones("avx2", "default"))) std::uint64_t count_row(
-    const unsigned char* a, const unsigned char* b, int width, const int* min_delta) {
+__attribute__((target_clones("avx2", "default"))) std::uint64_t count_row(const unsigned char* a,
+                                                                          const unsigned char* b,
+                                                                          int width,
+                                                                          const int* min_delta) {
   u8x64 thr;  // delta - 1 per channel: d > thr means mismatch; 255 can never be exceeded
   for (int i = 0; i < 64; ++i) {
     thr[i] = static_cast<unsigned char>(std::min(min_delta[i % 4], 256) - 1);
@@ -71,8 +73,8 @@ __attribute__((target_clones("avx2", "default"))) std::uint64_t count_row(
   return n;
 }
 
-MismatchTally count_rows(const unsigned char* a, const unsigned char* b, int width, int y0,
-                         int y1, const int* min_delta) {
+MismatchTally count_rows(const unsigned char* a, const unsigned char* b, int width, int y0, int y1,
+                         const int* min_delta) {
   MismatchTally t;
   const std::size_t stride = std::size_t(width) * 4;
   for (int y = y0; y < y1; ++y) {

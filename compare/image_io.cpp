@@ -1,14 +1,14 @@
 #include "compare/image_io.hpp"
 
 #include <fcntl.h>
+#include <fmt/format.h>
+#include <fmt/std.h>
 #include <spng.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
 #include <cstring>
-#include <fmt/format.h>
-#include <fmt/std.h>
 #include <memory>
 
 namespace aosuite {
@@ -92,8 +92,8 @@ cv::Mat decode_png_rgba8(std::span<const unsigned char> png, const std::string& 
   if (!ctx) throw FileError(fmt::format("{}: out of memory", name));
   auto check = [&](int rc, const char* stage) {
     if (rc != 0) {
-      throw FileError(fmt::format("{}: {} ({}): truncated or corrupt PNG?", name, stage,
-                                  spng_strerror(rc)));
+      throw FileError(
+          fmt::format("{}: {} ({}): truncated or corrupt PNG?", name, stage, spng_strerror(rc)));
     }
   };
   check(spng_set_png_buffer(ctx.get(), png.data(), png.size()), "cannot read");

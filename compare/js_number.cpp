@@ -61,8 +61,9 @@ std::string js_number_to_string(double x) {
   if (k <= n && n <= 21) {
     out += digits + std::string(static_cast<std::size_t>(n - k), '0');
   } else if (0 < n && n <= 21) {
-    out.append(digits, 0, static_cast<std::size_t>(n)).append(".").append(
-        digits, static_cast<std::size_t>(n));
+    out.append(digits, 0, static_cast<std::size_t>(n))
+        .append(".")
+        .append(digits, static_cast<std::size_t>(n));
   } else if (-6 < n && n <= 0) {
     out.append("0.").append(static_cast<std::size_t>(-n), '0').append(digits);
   } else {

@@ -1,15 +1,16 @@
 #include "compare/resemble.hpp"
 
-#include <opencv2/core/utility.hpp>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <mutex>
+#include <opencv2/core/utility.hpp>
 #include <stdexcept>
 #include <string>
 
 #include "compare/count_kernel.hpp"
 #include "compare/js_number.hpp"
+#include "compare/resemble_pixel.hpp"
 
 namespace aosuite::resemble {
 
@@ -26,12 +27,18 @@ Mode parse_mode(std::string_view name) {
 
 std::string_view mode_name(Mode mode) {
   switch (mode) {
-    case Mode::kDefault: return "default";
-    case Mode::kNothing: return "nothing";
-    case Mode::kLess: return "less";
-    case Mode::kColors: return "colors";
-    case Mode::kAntialiasing: return "antialiasing";
-    case Mode::kAlpha: return "alpha";
+    case Mode::kDefault:
+      return "default";
+    case Mode::kNothing:
+      return "nothing";
+    case Mode::kLess:
+      return "less";
+    case Mode::kColors:
+      return "colors";
+    case Mode::kAntialiasing:
+      return "antialiasing";
+    case Mode::kAlpha:
+      return "alpha";
   }
   return "default";
 }
@@ -52,10 +59,18 @@ Settings resolve(const Options& options) {
     switch (mode) {
       case Mode::kDefault:
         continue;  // not a Resemble mode: sets nothing, applies no custom tolerance
-      case Mode::kNothing: t = {0, 0, 0, 0, 0, 255}; break;
-      case Mode::kLess: t = {16, 16, 16, 16, 16, 240}; break;
-      case Mode::kAntialiasing: t = {32, 32, 32, 32, 64, 96}; break;
-      case Mode::kAlpha: t = {16, 16, 16, 255, 16, 240}; break;
+      case Mode::kNothing:
+        t = {0, 0, 0, 0, 0, 255};
+        break;
+      case Mode::kLess:
+        t = {16, 16, 16, 16, 16, 240};
+        break;
+      case Mode::kAntialiasing:
+        t = {32, 32, 32, 32, 64, 96};
+        break;
+      case Mode::kAlpha:
+        t = {16, 16, 16, 255, 16, 240};
+        break;
       case Mode::kColors:
         t.alpha = 16;
         t.min_brightness = 16;
@@ -78,39 +93,7 @@ Settings resolve(const Options& options) {
 
 namespace {
 
-struct Px {
-  int r, g, b, a;
-};
-
-Px load(const unsigned char* p) { return {p[0], p[1], p[2], p[3]}; }
-
-// Resemble's isColorSimilar: equal, or strictly closer than the tolerance.
-bool similar(double a, double b, double tol) { return a == b || std::abs(a - b) < tol; }
-
-double brightness(const Px& p) { return 0.3 * p.r + 0.59 * p.g + 0.11 * p.b; }
-
-// HSL hue as resemble.js computes it: the "/ 6" sits in an unreachable branch, so the
-// range is [0, 6), greys are 0 and ties go to red, then green.
-double hue(const Px& p) {
-  const double r = p.r / 255.0, g = p.g / 255.0, b = p.b / 255.0;
-  const double mx = std::max({r, g, b}), mn = std::min({r, g, b});
-  if (mx == mn) return 0;
-  const double d = mx - mn;
-  if (mx == r) return (g - b) / d + (g < b ? 6 : 0);
-  if (mx == g) return (b - r) / d + 2;
-  return (r - g) / d + 4;
-}
-
-double colors_distance(const Px& p, double r, double g, double b) {
-  return (std::abs(p.r - r) + std::abs(p.g - g) + std::abs(p.b - b)) / 3;
-}
-
-// Storing a double into a Uint8ClampedArray: NaN and negatives give 0, ties go to even.
-unsigned char u8clamp(double x) {
-  if (!(x > 0)) return 0;
-  if (x >= 255) return 255;
-  return static_cast<unsigned char>(std::nearbyint(x));
-}
+using namespace pixel;  // NOLINT: the predicates read as Resemble's own names
 
 // JavaScript's `v || fallback` for a number.
 double or_default(double v, double fallback) { return (v == 0 || std::isnan(v)) ? fallback : v; }
@@ -161,34 +144,16 @@ class PixelJudge {
       return colors_distance(p2, c.r, c.g, c.b) != 0;
     }
     auto inside = [&](const Box& b) { return within(x, y, b); };
-    if (o_.bounding_boxes && std::none_of(o_.bounding_boxes->begin(), o_.bounding_boxes->end(),
-                                          inside)) {
+    if (o_.bounding_boxes &&
+        std::none_of(o_.bounding_boxes->begin(), o_.bounding_boxes->end(), inside)) {
       return false;
     }
     return !(o_.ignored_boxes &&
              std::any_of(o_.ignored_boxes->begin(), o_.ignored_boxes->end(), inside));
   }
 
-  // resemble.js isAntialiased: the 3x3 neighbourhood by *linear* index, so x - 1 at the
-  // left edge reads the previous row's last pixel; indices past the end are skipped and
-  // negative ones read `undefined`, which counts for nothing.
-  bool antialiased(const unsigned char* img, const Px& src, int x, int y) const {
-    const double sb = brightness(src), sh = hue(src);
-    const long long len = static_cast<long long>(w_) * h_;
-    int contrast = 0, hue_diff = 0, equal = 0;
-    for (int i = -1; i <= 1; ++i) {
-      for (int j = -1; j <= 1; ++j) {
-        if (i == 0 && j == 0) continue;
-        const long long idx = static_cast<long long>(y + j) * w_ + (x + i);
-        if (idx < 0 || idx >= len) continue;
-        const Px t = load(img + idx * 4);
-        if (std::abs(sb - brightness(t)) > s_.tolerance.max_brightness) ++contrast;
-        if (t.r == src.r && t.g == src.g && t.b == src.b) ++equal;
-        if (std::abs(hue(t) - sh) > 0.3) ++hue_diff;
-        if (hue_diff > 1 || contrast > 1) return true;
-      }
-    }
-    return equal < 2;
+  bool antialiased(const unsigned char* img, const Px& p, int x, int y) const {
+    return pixel::antialiased(img, w_, h_, p, x, y, s_.tolerance.max_brightness);
   }
 
   bool ok(unsigned char* out, const Px& p, bool grey) const {
@@ -209,7 +174,8 @@ class PixelJudge {
     const Color& e = o_.error_color;
     double v[4] = {e.r, e.g, e.b, e.a};
     switch (o_.error_type) {
-      case ErrorType::kFlat: break;
+      case ErrorType::kFlat:
+        break;
       case ErrorType::kMovement:
         v[0] = (p2.r * (e.r / 255) + e.r) / 2;
         v[1] = (p2.g * (e.g / 255) + e.g) / 2;
@@ -333,8 +299,8 @@ Result compare(const cv::Mat& a, const cv::Mat& b, const Options& options) {
   const double early = options.return_early_threshold;
   const bool compare_only = early != 0 && !std::isnan(early);
   const bool stops_early = compare_only && !s.ignore_colors;
-  const bool has_area = options.bounding_boxes || options.ignored_boxes ||
-                        options.ignore_areas_colored_with;
+  const bool has_area =
+      options.bounding_boxes || options.ignored_boxes || options.ignore_areas_colored_with;
 
   Result r;
   Tally tally;

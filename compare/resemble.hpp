@@ -20,8 +20,13 @@ enum class Mode { kDefault, kNothing, kLess, kColors, kAntialiasing, kAlpha };
 Mode parse_mode(std::string_view name);  // throws std::invalid_argument
 std::string_view mode_name(Mode mode);
 
-enum class ErrorType { kFlat, kMovement, kFlatDifferenceIntensity, kMovementDifferenceIntensity,
-                       kDiffOnly };
+enum class ErrorType {
+  kFlat,
+  kMovement,
+  kFlatDifferenceIntensity,
+  kMovementDifferenceIntensity,
+  kDiffOnly
+};
 // Unknown names give kFlat, as Resemble silently keeps its default.
 ErrorType parse_error_type(std::string_view name);
 
@@ -53,7 +58,7 @@ struct Options {
   std::optional<std::vector<Box>> bounding_boxes;
   std::optional<std::vector<Box>> ignored_boxes;
   std::optional<Color> ignore_areas_colored_with;  // r, g, b compared; overrides the boxes
-  double return_early_threshold = 0;  // non-zero: no diff image, stop once above it
+  double return_early_threshold = 0;               // non-zero: no diff image, stop once above it
   CanvasAlpha canvas_alpha = CanvasAlpha::kNone;
   bool produce_diff = false;
 };
@@ -75,7 +80,7 @@ struct Result {
   double raw_mismatch_percentage = 0;
   std::uint64_t mismatch_count = 0;
   bool same_dimensions = true;
-  int width_difference = 0;   // image 1 minus image 2
+  int width_difference = 0;  // image 1 minus image 2
   int height_difference = 0;
   Bounds diff_bounds;
   double analysis_ms = 0;

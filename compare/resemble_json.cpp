@@ -1,7 +1,8 @@
 #include "compare/resemble_json.hpp"
 
-#include <cmath>
 #include <fmt/format.h>
+
+#include <cmath>
 #include <stdexcept>
 
 #include "compare/js_number.hpp"
@@ -10,13 +11,13 @@ namespace aosuite::resemble {
 
 std::string result_json(const Result& r, const nlohmann::ordered_json& extra) {
   const Bounds& b = r.diff_bounds;
-  std::string out = fmt::format(
-      R"({{"misMatchPercentage":"{}","rawMisMatchPercentage":{},"isSameDimensions":{},)"
-      R"("dimensionDifference":{{"width":{},"height":{}}},)"
-      R"("diffBounds":{{"top":{},"left":{},"bottom":{},"right":{}}},"analysisTime":{})",
-      r.mismatch_percentage, js_number_to_string(r.raw_mismatch_percentage), r.same_dimensions,
-      r.width_difference, r.height_difference, b.top, b.left, b.bottom, b.right,
-      static_cast<long long>(std::llround(r.analysis_ms)));
+  std::string out =
+      fmt::format(R"({{"misMatchPercentage":"{}","rawMisMatchPercentage":{},"isSameDimensions":{},)"
+                  R"("dimensionDifference":{{"width":{},"height":{}}},)"
+                  R"("diffBounds":{{"top":{},"left":{},"bottom":{},"right":{}}},"analysisTime":{})",
+                  r.mismatch_percentage, js_number_to_string(r.raw_mismatch_percentage),
+                  r.same_dimensions, r.width_difference, r.height_difference, b.top, b.left,
+                  b.bottom, b.right, static_cast<long long>(std::llround(r.analysis_ms)));
   if (extra.is_object()) {
     for (const auto& [key, value] : extra.items()) {
       out += fmt::format(",{}:{}", nlohmann::json(key).dump(), value.dump());
@@ -42,8 +43,8 @@ std::vector<Box> boxes(const nlohmann::json& j, const char* key) {
   std::vector<Box> out;
   for (const auto& b : j) {
     if (!b.is_object()) throw std::invalid_argument(fmt::format("'{}' holds a non-object", key));
-    out.push_back({field(b, "left", 0), field(b, "top", 0), field(b, "right", 0),
-                   field(b, "bottom", 0)});
+    out.push_back(
+        {field(b, "left", 0), field(b, "top", 0), field(b, "right", 0), field(b, "bottom", 0)});
   }
   return out;
 }

@@ -1,0 +1,94 @@
+#include "compare/image_io.hpp"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include "png_fixture.hpp"
+
+namespace aosuite {
+namespace {
+
+using test::Bytes;
+using test::make_png;
+
+cv::Vec4b decode_1px(const Bytes& png) {
+  const cv::Mat m = decode_png_rgba8(png, "fixture.png");
+  EXPECT_EQ(m.cols, 1);
+  EXPECT_EQ(m.rows, 1);
+  return m.at<cv::Vec4b>(0, 0);
+}
+
+TEST(DecodePng, GreyGreyAlphaPaletteAndSixteenBit) {
+  EXPECT_EQ(decode_1px(make_png(1, 1, 8, 0, {{77}})), cv::Vec4b(77, 77, 77, 255));
+  EXPECT_EQ(decode_1px(make_png(1, 1, 8, 4, {{77, 9}})), cv::Vec4b(77, 77, 77, 9));
+  EXPECT_EQ(decode_1px(make_png(1, 1, 8, 3, {{1}}, {10, 20, 30, 40, 50, 60}, {255, 99})),
+            cv::Vec4b(40, 50, 60, 99));  // palette entry 1 with its tRNS alpha
+  // 16-bit samples 0xABAB, 0x1212, 0x0000 are exactly 171, 18, 0 in 8 bits
+  EXPECT_EQ(decode_1px(make_png(1, 1, 16, 2, {{0xAB, 0xAB, 0x12, 0x12, 0, 0}})),
+            cv::Vec4b(171, 18, 0, 255));
+  EXPECT_EQ(decode_1px(make_png(1, 1, 16, 0, {{0x12, 0x12}})), cv::Vec4b(18, 18, 18, 255));
+}
+
+void expect_error(const Bytes& png, const std::string& fragment) {
+  try {
+    decode_png_rgba8(png, "bad.png");
+    ADD_FAILURE() << "no error for " << fragment;
+  } catch (const FileError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("bad.png"), std::string::npos) << what;
+    EXPECT_NE(what.find(fragment), std::string::npos) << what;
+    EXPECT_EQ(what.find('\n'), std::string::npos) << "one line: " << what;
+  }
+}
+
+TEST(DecodePng, RejectsBadInputWithOneLineNamingTheFile) {
+  expect_error({'h', 'e', 'l', 'l', 'o'}, "not a PNG");
+  expect_error({}, "not a PNG");
+  const Bytes good = make_png(4, 4, 8, 2, std::vector<Bytes>(4, Bytes(12, 7)));
+  expect_error(Bytes(good.begin(), good.begin() + static_cast<long>(good.size()) / 2), "corrupt");
+  expect_error(Bytes(good.begin(), good.begin() + 20), "header");
+  // a header claiming 100000 x 100000 pixels, refused before any allocation
+  expect_error(make_png(100000, 100000, 8, 6, {}), "larger than");
+  expect_error(make_png(20000, 20000, 8, 6, {}), "larger than");
+  // a valid header whose data is missing
+  expect_error(make_png(4, 4, 8, 2, {}), "corrupt");
+}
+
+TEST(FileIo, MissingFilesAndDirectoriesAreClearErrors) {
+  test::TempDir dir;
+  EXPECT_THROW(read_png_rgba8(dir / "missing.png"), FileError);
+  try {
+    read_png_rgba8(dir.path());
+  } catch (const FileError& e) {
+    EXPECT_NE(std::string(e.what()).find("is a directory"), std::string::npos);
+  }
+}
+
+TEST(FileIo, PngRoundTripsAndWritesAtomically) {
+  test::TempDir dir;
+  cv::Mat img(3, 5, CV_8UC4);
+  cv::randu(img, 0, 256);
+  write_png_rgba8(dir / "x.png", img);
+  const cv::Mat back = read_png_rgba8(dir / "x.png");
+  EXPECT_EQ(cv::norm(img, back, cv::NORM_INF), 0);
+  // only the final file remains: no temporary beside it
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir.path()), {}), 1);
+  EXPECT_THROW(write_png_rgba8(dir / "no" / "such" / "dir.png", img), FileError);
+  EXPECT_FALSE(std::filesystem::exists(dir / "no"));
+}
+
+TEST(FileIo, FailedWriteKeepsTheOldFile) {
+  test::TempDir dir;
+  test::write_bytes(dir / "keep.png", {1, 2, 3});
+  std::filesystem::permissions(
+      dir.path(), std::filesystem::perms::owner_read | std::filesystem::perms::owner_exec);
+  cv::Mat img(2, 2, CV_8UC4, cv::Scalar::all(9));
+  if (::geteuid() != 0) {  // root ignores directory permissions
+    EXPECT_THROW(write_png_rgba8(dir / "keep.png", img), FileError);
+  }
+  std::filesystem::permissions(dir.path(), std::filesystem::perms::owner_all);
+  EXPECT_EQ(read_file(dir / "keep.png"), (Bytes{1, 2, 3}));
+}
+
+}  // namespace
+}  // namespace aosuite

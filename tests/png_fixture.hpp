@@ -1,0 +1,78 @@
+// Hand-built PNG files for decoder tests: any colour type and bit depth, a lying header, a
+// truncated stream. Written with zlib directly so the fixtures do not depend on our encoder.
+#pragma once
+
+#include <zlib.h>
+
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+namespace aosuite::test {
+
+using Bytes = std::vector<unsigned char>;
+
+inline void put_u32(Bytes& out, std::uint32_t v) {
+  for (int s = 24; s >= 0; s -= 8) out.push_back(static_cast<unsigned char>(v >> s));
+}
+
+inline void put_chunk(Bytes& out, const char* type, const Bytes& data) {
+  put_u32(out, static_cast<std::uint32_t>(data.size()));
+  Bytes body(type, type + 4);
+  body.insert(body.end(), data.begin(), data.end());
+  out.insert(out.end(), body.begin(), body.end());
+  put_u32(out, static_cast<std::uint32_t>(crc32(0, body.data(), static_cast<uInt>(body.size()))));
+}
+
+// `rows` holds the raw samples of each row (no filter byte); filter type 0 is added.
+inline Bytes make_png(std::uint32_t w, std::uint32_t h, int bit_depth, int color_type,
+                      const std::vector<Bytes>& rows, const Bytes& plte = {},
+                      const Bytes& trns = {}) {
+  Bytes out = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  Bytes ihdr;
+  put_u32(ihdr, w);
+  put_u32(ihdr, h);
+  ihdr.insert(ihdr.end(), {static_cast<unsigned char>(bit_depth),
+                           static_cast<unsigned char>(color_type), 0, 0, 0});
+  put_chunk(out, "IHDR", ihdr);
+  if (!plte.empty()) put_chunk(out, "PLTE", plte);
+  if (!trns.empty()) put_chunk(out, "tRNS", trns);
+  Bytes raw;
+  for (const Bytes& row : rows) {
+    raw.push_back(0);
+    raw.insert(raw.end(), row.begin(), row.end());
+  }
+  uLongf len = compressBound(static_cast<uLong>(raw.size()));
+  Bytes z(len);
+  compress(z.data(), &len, raw.data(), static_cast<uLong>(raw.size()));
+  z.resize(len);
+  if (!rows.empty()) put_chunk(out, "IDAT", z);
+  put_chunk(out, "IEND", {});
+  return out;
+}
+
+inline void write_bytes(const std::filesystem::path& p, const Bytes& b) {
+  std::ofstream(p, std::ios::binary)
+      .write(reinterpret_cast<const char*>(b.data()), static_cast<std::streamsize>(b.size()));
+}
+
+// A fresh empty directory under the system temp dir, removed at scope exit.
+class TempDir {
+ public:
+  TempDir() {
+    std::string tmpl = (std::filesystem::temp_directory_path() / "aosuite-test-XXXXXX").string();
+    path_ = mkdtemp(tmpl.data());
+  }
+  ~TempDir() { std::filesystem::remove_all(path_); }
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+  const std::filesystem::path& path() const { return path_; }
+  std::filesystem::path operator/(const std::string& name) const { return path_ / name; }
+
+ private:
+  std::filesystem::path path_;
+};
+
+}  // namespace aosuite::test
