@@ -98,14 +98,13 @@ rs::Options options_from(const CompareArgs& args) {
 
 // Reads both files, decoding the second on another thread; identical bytes decode once.
 std::pair<cv::Mat, cv::Mat> load_pair(const std::string& a, const std::string& b) {
-  auto bytes_b = std::async(std::launch::async, [&] { return read_file(b); });
-  const std::vector<unsigned char> bytes_a = read_file(a);
-  const std::vector<unsigned char> bb = bytes_b.get();
-  if (bytes_a == bb) {
+  const MappedFile file_a(a), file_b(b);
+  const auto bytes_a = file_a.bytes(), bytes_b = file_b.bytes();
+  if (std::equal(bytes_a.begin(), bytes_a.end(), bytes_b.begin(), bytes_b.end())) {
     cv::Mat img = decode_png_rgba8(bytes_a, a);
     return {img, img};
   }
-  auto img_b = std::async(std::launch::async, [&] { return decode_png_rgba8(bb, b); });
+  auto img_b = std::async(std::launch::async, [&] { return decode_png_rgba8(bytes_b, b); });
   cv::Mat img_a = decode_png_rgba8(bytes_a, a);
   return {img_a, img_b.get()};
 }

@@ -1,5 +1,7 @@
 #include "compare/count_kernel.hpp"
 
+#include <emmintrin.h>
+
 #include <algorithm>
 #include <cstring>
 #include <mutex>
@@ -7,10 +9,6 @@
 
 namespace aosuite {
 namespace {
-
-using u8x64 = unsigned char __attribute__((vector_size(64)));
-using u32x16 = std::uint32_t __attribute__((vector_size(64)));
-using i32x16 = std::int32_t __attribute__((vector_size(64)));
 
 bool pixel_differs(const unsigned char* a, const unsigned char* b, const int* min_delta) {
   for (int c = 0; c < 4; ++c) {
@@ -45,32 +43,64 @@ void merge(MismatchTally& into, const MismatchTally& t) {
   into.right = std::max(into.right, t.right);
 }
 
-// Counts a row's mismatching pixels 16 at a time. AVX2 and baseline SSE2 clones are built;
-// the loader picks one for the machine.
-__attribute__((target_clones("avx2", "default"))) std::uint64_t count_row(const unsigned char* a,
-                                                                          const unsigned char* b,
-                                                                          int width,
-                                                                          const int* min_delta) {
-  u8x64 thr;  // delta - 1 per channel: d > thr means mismatch; 255 can never be exceeded
-  for (int i = 0; i < 64; ++i) {
-    thr[i] = static_cast<unsigned char>(std::min(min_delta[i % 4], 256) - 1);
+struct RowTally {
+  std::uint64_t count = 0;
+  int first = -1, last = -1;  // first and last mismatching pixel
+};
+
+// Counts a row's mismatching pixels 16 at a time and finds the first and last of them.
+// SSE2 is x86-64's baseline, so this needs no dispatch; one core of the CI machine already
+// moves more pixels per second this way than the PNG decoder can produce.
+RowTally count_row(const unsigned char* a, const unsigned char* b, int width,
+                   const int* min_delta) {
+  // d > delta - 1 per channel means mismatch; saturating d - (delta - 1) is then non-zero.
+  // A delta of 256 can never be reached: its lane is masked off.
+  alignas(16) unsigned char thr[16], keep[16];
+  for (int i = 0; i < 16; ++i) {
+    thr[i] = static_cast<unsigned char>(std::min(min_delta[i % 4], 255) - 1);
+    keep[i] = min_delta[i % 4] > 255 ? 0 : 0xff;
   }
-  i32x16 acc = {};
+  const __m128i vthr = _mm_load_si128(reinterpret_cast<const __m128i*>(thr));
+  const __m128i vkeep = _mm_load_si128(reinterpret_cast<const __m128i*>(keep));
+  const __m128i zero = _mm_setzero_si128();
+  // -1 per pixel lane that matches, four pixels at a time
+  auto matches = [&](int x) {
+    const __m128i va = _mm_loadu_si128(reinterpret_cast<const __m128i*>(a + 4 * x));
+    const __m128i vb = _mm_loadu_si128(reinterpret_cast<const __m128i*>(b + 4 * x));
+    const __m128i d = _mm_sub_epi8(_mm_max_epu8(va, vb), _mm_min_epu8(va, vb));
+    return _mm_cmpeq_epi32(_mm_and_si128(_mm_subs_epu8(d, vthr), vkeep), zero);
+  };
+  __m128i acc = zero;
+  int first_block = -1, last_block = -1;
   int x = 0;
   for (; x + 16 <= width; x += 16) {
-    u8x64 va, vb;
-    std::memcpy(&va, a + 4 * x, 64);
-    std::memcpy(&vb, b + 4 * x, 64);
-    const u8x64 d = (va > vb) ? va - vb : vb - va;
-    const u8x64 over = reinterpret_cast<u8x64>(d > thr);
-    u32x16 lanes;
-    std::memcpy(&lanes, &over, 64);
-    acc -= reinterpret_cast<i32x16>(lanes != 0);  // -1 per mismatching pixel
+    const __m128i m0 = matches(x), m1 = matches(x + 4), m2 = matches(x + 8), m3 = matches(x + 12);
+    const __m128i all = _mm_and_si128(_mm_and_si128(m0, m1), _mm_and_si128(m2, m3));
+    if (_mm_movemask_epi8(all) != 0xffff) {
+      acc = _mm_add_epi32(acc, _mm_add_epi32(_mm_add_epi32(m0, m1), _mm_add_epi32(m2, m3)));
+      acc = _mm_add_epi32(acc, _mm_set1_epi32(4));  // 16 pixels, minus the matching ones
+      if (first_block < 0) first_block = x;
+      last_block = x;
+    }
   }
-  std::uint64_t n = 0;
-  for (int i = 0; i < 16; ++i) n += static_cast<std::uint32_t>(acc[i]);
-  for (; x < width; ++x) n += pixel_differs(a + 4 * x, b + 4 * x, min_delta);
-  return n;
+  alignas(16) std::int32_t lanes[4];
+  _mm_store_si128(reinterpret_cast<__m128i*>(lanes), acc);
+  RowTally t;
+  t.count = std::uint64_t(lanes[0]) + lanes[1] + lanes[2] + lanes[3];
+  // Exact positions inside the first and last blocks, and the scalar tail.
+  if (first_block >= 0) {
+    t.first = first_block;
+    while (!pixel_differs(a + 4 * t.first, b + 4 * t.first, min_delta)) ++t.first;
+    t.last = last_block + 15;
+    while (!pixel_differs(a + 4 * t.last, b + 4 * t.last, min_delta)) --t.last;
+  }
+  for (; x < width; ++x) {
+    if (!pixel_differs(a + 4 * x, b + 4 * x, min_delta)) continue;
+    ++t.count;
+    if (t.first < 0) t.first = x;
+    t.last = x;
+  }
+  return t;
 }
 
 MismatchTally count_rows(const unsigned char* a, const unsigned char* b, int width, int y0, int y1,
@@ -78,22 +108,8 @@ MismatchTally count_rows(const unsigned char* a, const unsigned char* b, int wid
   MismatchTally t;
   const std::size_t stride = std::size_t(width) * 4;
   for (int y = y0; y < y1; ++y) {
-    const unsigned char* ra = a + y * stride;
-    const unsigned char* rb = b + y * stride;
-    const std::uint64_t n = count_row(ra, rb, width, min_delta);
-    if (n == 0) continue;
-    // Only a pixel left of the current left bound (or right of the right one) can move it,
-    // so these scans stop early once the bounds have spread.
-    int first = 0, last = width - 1;
-    const int left_limit = t.count ? t.left : width;
-    while (first < left_limit && !pixel_differs(ra + 4 * first, rb + 4 * first, min_delta)) {
-      ++first;
-    }
-    const int right_limit = t.count ? t.right : -1;
-    while (last > right_limit && !pixel_differs(ra + 4 * last, rb + 4 * last, min_delta)) {
-      --last;
-    }
-    merge_row(t, y, n, first, last);
+    const RowTally r = count_row(a + y * stride, b + y * stride, width, min_delta);
+    merge_row(t, y, r.count, r.first, r.last);
   }
   return t;
 }

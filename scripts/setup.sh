@@ -6,7 +6,7 @@ cd "$(dirname "$0")/.."
 
 PACKAGES=(
   g++ cmake make pkg-config
-  libspng-dev libopencv-core-dev libfmt-dev libcli11-dev nlohmann-json3-dev
+  libspng-dev libdeflate-dev libopencv-core-dev libfmt-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev libbenchmark-dev
 )
 

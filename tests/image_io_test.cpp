@@ -29,6 +29,38 @@ TEST(DecodePng, GreyGreyAlphaPaletteAndSixteenBit) {
   EXPECT_EQ(decode_1px(make_png(1, 1, 16, 0, {{0x12, 0x12}})), cv::Vec4b(18, 18, 18, 255));
 }
 
+TEST(DecodePng, EveryRowFilterForRgbAndRgba) {
+  // Rows cycle through None, Sub, Up, Average and Paeth; random samples exercise every
+  // predictor branch. RGBA and RGB 8-bit take the libdeflate path, the others libspng.
+  cv::RNG rng(5);
+  for (int channels : {3, 4}) {
+    const int w = 37, h = 23;
+    std::vector<Bytes> rows(h, Bytes(std::size_t(w) * channels));
+    for (auto& r : rows)
+      for (auto& v : r) v = static_cast<unsigned char>(rng.uniform(0, 256));
+    const Bytes png =
+        make_png(w, h, 8, channels == 4 ? 6 : 2, rows, {}, {}, {0, 1, 2, 3, 4}, channels);
+    const cv::Mat m = decode_png_rgba8(png, "filters.png");
+    for (int y = 0; y < h; ++y) {
+      for (int x = 0; x < w; ++x) {
+        const unsigned char* src = &rows[y][std::size_t(x) * channels];
+        const cv::Vec4b want(src[0], src[1], src[2], channels == 4 ? src[3] : 255);
+        ASSERT_EQ(m.at<cv::Vec4b>(y, x), want) << channels << " channels, row " << y;
+      }
+    }
+  }
+}
+
+TEST(DecodePng, CorruptImageDataInTheFastPathIsAnError) {
+  const Bytes good = make_png(8, 8, 8, 6, std::vector<Bytes>(8, Bytes(32, 200)));
+  Bytes bad_crc = good;
+  bad_crc[40] ^= 0x55;  // inside IDAT: its CRC no longer matches
+  EXPECT_THROW(decode_png_rgba8(bad_crc, "x.png"), FileError);
+  // a row with filter type 9
+  std::vector<Bytes> rows(2, Bytes(8, 1));
+  EXPECT_THROW(decode_png_rgba8(make_png(2, 2, 8, 6, rows, {}, {}, {9}, 4), "x.png"), FileError);
+}
+
 void expect_error(const Bytes& png, const std::string& fragment) {
   try {
     decode_png_rgba8(png, "bad.png");

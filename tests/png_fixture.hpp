@@ -5,6 +5,7 @@
 #include <zlib.h>
 
 #include <cstdint>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -26,10 +27,32 @@ inline void put_chunk(Bytes& out, const char* type, const Bytes& data) {
   put_u32(out, static_cast<std::uint32_t>(crc32(0, body.data(), static_cast<uInt>(body.size()))));
 }
 
-// `rows` holds the raw samples of each row (no filter byte); filter type 0 is added.
+inline int paeth_predictor(int a, int b, int c) {
+  const int p = a + b - c, pa = std::abs(p - a), pb = std::abs(p - b), pc = std::abs(p - c);
+  return (pa <= pb && pa <= pc) ? a : (pb <= pc ? b : c);
+}
+
+// Applies PNG filter `type` (0-4) to `row` given the previous unfiltered row (or zeros).
+inline Bytes filter_row(int type, const Bytes& row, const Bytes& prev, int bpp) {
+  Bytes out(row.size());
+  for (std::size_t i = 0; i < row.size(); ++i) {
+    const int a = i >= std::size_t(bpp) ? row[i - bpp] : 0, b = prev.empty() ? 0 : prev[i];
+    const int c = i >= std::size_t(bpp) && !prev.empty() ? prev[i - bpp] : 0;
+    const int pred = type == 1   ? a
+                     : type == 2 ? b
+                     : type == 3 ? (a + b) / 2
+                     : type == 4 ? paeth_predictor(a, b, c)
+                                 : 0;
+    out[i] = static_cast<unsigned char>(row[i] - pred);
+  }
+  return out;
+}
+
+// `rows` holds the raw samples of each row (no filter byte). Row y is written with filter
+// `filters[y % filters.size()]` (bpp = bytes per pixel, for the filters that need it).
 inline Bytes make_png(std::uint32_t w, std::uint32_t h, int bit_depth, int color_type,
                       const std::vector<Bytes>& rows, const Bytes& plte = {},
-                      const Bytes& trns = {}) {
+                      const Bytes& trns = {}, const std::vector<int>& filters = {0}, int bpp = 1) {
   Bytes out = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
   Bytes ihdr;
   put_u32(ihdr, w);
@@ -40,9 +63,11 @@ inline Bytes make_png(std::uint32_t w, std::uint32_t h, int bit_depth, int color
   if (!plte.empty()) put_chunk(out, "PLTE", plte);
   if (!trns.empty()) put_chunk(out, "tRNS", trns);
   Bytes raw;
-  for (const Bytes& row : rows) {
-    raw.push_back(0);
-    raw.insert(raw.end(), row.begin(), row.end());
+  for (std::size_t y = 0; y < rows.size(); ++y) {
+    const int f = filters[y % filters.size()];
+    raw.push_back(static_cast<unsigned char>(f));
+    const Bytes filtered = filter_row(f, rows[y], y ? rows[y - 1] : Bytes{}, bpp);
+    raw.insert(raw.end(), filtered.begin(), filtered.end());
   }
   uLongf len = compressBound(static_cast<uLong>(raw.size()));
   Bytes z(len);

@@ -1,0 +1,119 @@
+// Comparator kernels per mode at 1080p and 4K, PNG decode, and a memory-bandwidth baseline
+// (one read of both images) that the kernel is measured against.
+#include <benchmark/benchmark.h>
+
+#include <atomic>
+#include <opencv2/core/utility.hpp>
+
+#include "compare/count_kernel.hpp"
+#include "compare/image_io.hpp"
+#include "compare/resemble.hpp"
+
+namespace {
+
+using aosuite::resemble::Mode;
+
+// An AO-like pair: smooth shading plus noise; the second is 1.5 % darker with a few blobs,
+// so every pixel differs a little (the hard case for a tolerance), as peers-bench's `ao` pair.
+std::pair<cv::Mat, cv::Mat> make_pair(int w, int h) {
+  cv::Mat a(h, w, CV_8UC4), noise(h, w, CV_8UC4);
+  cv::randu(noise, 0, 8);
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      const auto v = static_cast<uchar>(60 + 150 * x / w + 30 * y / h);
+      a.at<cv::Vec4b>(y, x) =
+          cv::Vec4b(v, static_cast<uchar>(v * 0.9), static_cast<uchar>(v * 0.8), 255);
+    }
+  }
+  a += noise;
+  a.forEach<cv::Vec4b>([](cv::Vec4b& p, const int*) { p[3] = 255; });
+  cv::Mat b = a * 0.985;
+  b.forEach<cv::Vec4b>([](cv::Vec4b& p, const int*) { p[3] = 255; });
+  for (int k = 0; k < 200; ++k) {
+    cv::Mat roi = b(cv::Rect((k * 7919) % (w - 20), (k * 104729) % (h - 20), 12, 12));
+    roi.setTo(cv::Scalar(255, 0, 0, 255));
+  }
+  return {a, b};
+}
+
+const std::pair<cv::Mat, cv::Mat>& pair_for(int height) {
+  static const auto p1080 = make_pair(1920, 1080);
+  static const auto p2160 = make_pair(3840, 2160);
+  return height == 1080 ? p1080 : p2160;
+}
+
+void set_pixels(benchmark::State& state, const cv::Mat& m) {
+  state.SetItemsProcessed(static_cast<int64_t>(state.iterations()) * m.rows * m.cols);
+  state.SetBytesProcessed(static_cast<int64_t>(state.iterations()) * m.rows * m.cols * 8);
+}
+
+void BM_Compare(benchmark::State& state, Mode mode, bool diff) {
+  const auto& [a, b] = pair_for(static_cast<int>(state.range(0)));
+  aosuite::resemble::Options o;
+  o.modes = {mode};
+  o.produce_diff = diff;
+  for (auto _ : state) benchmark::DoNotOptimize(aosuite::resemble::compare(a, b, o));
+  set_pixels(state, a);
+}
+
+// The floor: read both images once with the same threads the comparator uses, doing the
+// least work that still touches every byte (an XOR folded into one word per stripe).
+void BM_ReadBothBaseline(benchmark::State& state) {
+  const auto& [a, b] = pair_for(static_cast<int>(state.range(0)));
+  const auto* pa = reinterpret_cast<const std::uint64_t*>(a.data);
+  const auto* pb = reinterpret_cast<const std::uint64_t*>(b.data);
+  const int rows = a.rows;
+  const std::size_t row_words = std::size_t(a.cols) / 2;
+  for (auto _ : state) {
+    std::atomic<std::uint64_t> total{0};
+    cv::parallel_for_(
+        cv::Range(0, rows),
+        [&](const cv::Range& r) {
+          std::uint64_t acc = 0;
+          for (std::size_t i = r.start * row_words; i < r.end * row_words; ++i)
+            acc |= pa[i] ^ pb[i];
+          total |= acc;
+        },
+        std::max(1.0, double(a.total()) / (1 << 18)));
+    benchmark::DoNotOptimize(total.load());
+  }
+  set_pixels(state, a);
+}
+
+void BM_CountScalarReference(benchmark::State& state) {
+  const auto& [a, b] = pair_for(static_cast<int>(state.range(0)));
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(
+        aosuite::count_mismatches_scalar(a.data, b.data, a.cols, a.rows, {16, 16, 16, 16}));
+  }
+  set_pixels(state, a);
+}
+
+void BM_DecodePng(benchmark::State& state) {
+  const auto& a = pair_for(static_cast<int>(state.range(0))).first;
+  const std::vector<unsigned char> png = aosuite::encode_png_rgba8(a, 6);
+  for (auto _ : state) benchmark::DoNotOptimize(aosuite::decode_png_rgba8(png, "bench"));
+  state.SetItemsProcessed(static_cast<int64_t>(state.iterations()) * a.rows * a.cols);
+}
+
+void BM_EncodeDiffPng(benchmark::State& state) {
+  const auto& a = pair_for(static_cast<int>(state.range(0))).first;
+  for (auto _ : state) benchmark::DoNotOptimize(aosuite::encode_png_rgba8(a, 3));
+  state.SetItemsProcessed(static_cast<int64_t>(state.iterations()) * a.rows * a.cols);
+}
+
+#define SIZES Arg(1080)->Arg(2160)->Unit(benchmark::kMillisecond)->UseRealTime()
+BENCHMARK(BM_ReadBothBaseline)->SIZES;
+BENCHMARK_CAPTURE(BM_Compare, less, Mode::kLess, false)->SIZES;
+BENCHMARK_CAPTURE(BM_Compare, nothing, Mode::kNothing, false)->SIZES;
+BENCHMARK_CAPTURE(BM_Compare, alpha, Mode::kAlpha, false)->SIZES;
+BENCHMARK_CAPTURE(BM_Compare, colors, Mode::kColors, false)->SIZES;
+BENCHMARK_CAPTURE(BM_Compare, antialiasing, Mode::kAntialiasing, false)->SIZES;
+BENCHMARK_CAPTURE(BM_Compare, less_with_diff, Mode::kLess, true)->SIZES;
+BENCHMARK(BM_CountScalarReference)->SIZES;
+BENCHMARK(BM_DecodePng)->SIZES;
+BENCHMARK(BM_EncodeDiffPng)->SIZES;
+
+}  // namespace
+
+BENCHMARK_MAIN();
