@@ -11,5 +11,6 @@ inline constexpr int kExitDifferent = 1;
 inline constexpr int kExitError = 2;
 
 void add_compare_command(CLI::App& app, int& rc);
+void add_render_command(CLI::App& app, int& rc);  // in libaosuite_gl.so
 
 }  // namespace aosuite::cli

@@ -1,16 +1,48 @@
 // aosuite: a thin command line over the library; each subcommand lives in its own file.
+#include <dlfcn.h>
 #include <fmt/format.h>
 
+#include <cstring>
 #include <exception>
+#include <filesystem>
 
 #include "cli/commands.hpp"
 
+namespace {
+
+// Commands that need OpenGL live in libaosuite_gl.so beside this binary, loaded on demand,
+// so that `aosuite compare` starts without loading Mesa, LLVM or OpenImageIO.
+bool is_gl_command(const char* name) { return std::strcmp(name, "render") == 0; }
+
+int run_gl_command(int argc, char** argv) {
+  const std::filesystem::path lib =
+      std::filesystem::read_symlink("/proc/self/exe").parent_path() / "libaosuite_gl.so";
+  void* handle = dlopen(lib.c_str(), RTLD_NOW | RTLD_LOCAL);
+  if (!handle) {
+    fmt::print(stderr, "aosuite: cannot load {}: {}\n", lib.string(), dlerror());
+    return aosuite::cli::kExitError;
+  }
+  using Main = int (*)(int, char**);
+  auto entry = reinterpret_cast<Main>(dlsym(handle, "aosuite_gl_main"));
+  if (!entry) {
+    fmt::print(stderr, "aosuite: {} has no aosuite_gl_main\n", lib.string());
+    return aosuite::cli::kExitError;
+  }
+  return entry(argc, argv);
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
+  if (argc > 1 && is_gl_command(argv[1])) return run_gl_command(argc, argv);
   CLI::App app{"aosuite: ambient-occlusion rendering and perceptual image regression suite"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "aosuite 0.1.0");
   int rc = aosuite::cli::kExitSame;
   aosuite::cli::add_compare_command(app, rc);
+  // Listed for --help; run_gl_command handles them before parsing.
+  app.add_subcommand("render", "Render a scene view with one AO technique (see render --help)")
+      ->allow_extras();
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -8,6 +8,7 @@ PACKAGES=(
   g++ cmake make pkg-config
   libspng-dev libdeflate-dev libopencv-core-dev libfmt-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev libbenchmark-dev
+  libosmesa6-dev libglm-dev libopenimageio-dev
 )
 
 SUDO=""

@@ -1,0 +1,172 @@
+// `aosuite render`: one scene view through one technique; writes the no-AO, with-AO and
+// AO-only PNGs, the AO term as float EXR, and a JSON of parameters and per-pass times.
+#include <OpenImageIO/imageio.h>
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "cli/commands.hpp"
+#include "compare/image_io.hpp"
+#include "renderer/renderer.hpp"
+#include "renderer/scene.hpp"
+
+namespace aosuite::cli {
+namespace {
+
+namespace fs = std::filesystem;
+namespace rd = aosuite::renderer;
+
+struct RenderArgs {
+  std::string scene = "village", view, technique = "alchemy", out = "reports/render", blur,
+              outputs = "all";
+  int width = 1920, height = 1080, runs = 1;
+  std::optional<int> samples;
+  std::optional<float> radius, bias, intensity, contrast;
+  std::vector<float> level_weights;
+};
+
+const rd::View& pick_view(const rd::Scene& scene, const std::string& name) {
+  if (scene.views.empty()) throw std::invalid_argument("scene '" + scene.name + "' has no views");
+  if (name.empty()) return scene.views.front();
+  for (const rd::View& v : scene.views) {
+    if (v.name == name) return v;
+  }
+  if (std::all_of(name.begin(), name.end(), ::isdigit) && std::stoul(name) < scene.views.size()) {
+    return scene.views[std::stoul(name)];
+  }
+  throw std::invalid_argument("scene '" + scene.name + "' has no view '" + name + "'");
+}
+
+void write_exr(const fs::path& path, const cv::Mat& ao) {
+  const fs::path tmp = path.parent_path() / ("." + path.filename().string() + ".tmp.exr");
+  auto out = OIIO::ImageOutput::create(tmp.string());
+  const OIIO::ImageSpec spec(ao.cols, ao.rows, 1, OIIO::TypeDesc::FLOAT);
+  if (!out || !out->open(tmp.string(), spec) || !out->write_image(OIIO::TypeDesc::FLOAT, ao.data) ||
+      !out->close()) {
+    throw FileError(fmt::format("{}: cannot write EXR: {}", path.string(), OIIO::geterror()));
+  }
+  fs::rename(tmp, path);
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+int run_render(const RenderArgs& a) {
+  rd::Scene scene = rd::builtin_scene(a.scene);
+  const rd::View& view = pick_view(scene, a.view);
+  rd::RenderSettings s;
+  s.width = a.width, s.height = a.height;
+  s.technique = rd::parse_technique(a.technique);
+  s.params = rd::default_params(s.technique);
+  if (a.samples) s.params.samples = *a.samples;
+  if (a.radius) s.params.radius = *a.radius;
+  if (a.bias) s.params.bias = *a.bias;
+  if (a.intensity) s.params.intensity = *a.intensity;
+  if (a.contrast) s.params.contrast = *a.contrast;
+  if (!a.blur.empty()) s.params.blur = rd::parse_blur(a.blur);
+  if (!a.level_weights.empty()) {
+    if (a.level_weights.size() != 5) throw std::invalid_argument("--level-weights needs 5 values");
+    std::copy(a.level_weights.begin(), a.level_weights.end(), s.params.level_weights.begin());
+  }
+  s.outputs = rd::parse_outputs(a.outputs);
+
+  rd::Renderer renderer;
+  // A warm-up frame compiles llvmpipe's shader variants; then the median of the timed runs.
+  rd::Images img = renderer.render(scene, view, s);
+  std::map<std::string, std::vector<double>> gpu, wall;
+  for (int r = 0; r < a.runs; ++r) {
+    img = renderer.render(scene, view, s);
+    for (const rd::PassTime& t : img.times) {
+      gpu[t.pass].push_back(t.gpu_ms);
+      wall[t.pass].push_back(t.wall_ms);
+    }
+  }
+  fs::create_directories(a.out);
+  const std::string stem = fmt::format("{}_{}_{}", scene.name, view.name, a.technique);
+  const fs::path dir(a.out);
+  if (!img.no_ao.empty()) write_png_rgba8(dir / (stem + "_no_ao.png"), img.no_ao);
+  if (!img.with_ao.empty()) write_png_rgba8(dir / (stem + "_with_ao.png"), img.with_ao);
+  if (!img.ao_only.empty()) write_png_rgba8(dir / (stem + "_ao_only.png"), img.ao_only);
+  if (!img.ao.empty()) write_exr(dir / (stem + "_ao.exr"), img.ao);
+
+  nlohmann::ordered_json j;
+  j["scene"] = scene.name, j["view"] = view.name, j["technique"] = a.technique;
+  j["width"] = s.width, j["height"] = s.height;
+  j["params"] = {{"samples", s.params.samples},
+                 {"radius", s.params.radius},
+                 {"bias", s.params.bias},
+                 {"intensity", s.params.intensity},
+                 {"contrast", s.params.contrast},
+                 {"blur", rd::blur_name(s.params.blur)},
+                 {"level_weights", s.params.level_weights}};
+  j["gl"] = renderer.gl_description();
+  j["runs"] = a.runs;
+  for (const auto& [pass, times] : gpu) {
+    j["median_ms"][pass] = {{"gpu", median(times)}, {"wall", median(wall[pass])}};
+  }
+  const std::string text = j.dump(2) + "\n";
+  write_file_atomic(dir / (stem + ".json"),
+                    {reinterpret_cast<const unsigned char*>(text.data()), text.size()});
+  fmt::print("{}: {}\n", (dir / stem).string(), j["median_ms"].dump());
+  return kExitSame;
+}
+
+}  // namespace
+
+void add_render_command(CLI::App& app, int& rc) {
+  auto a = std::make_shared<RenderArgs>();
+  CLI::App* cmd = app.add_subcommand("render", "Render a scene view with one AO technique");
+  cmd->add_option("--scene", a->scene,
+                  fmt::format("built-in scene: {}", fmt::join(rd::builtin_scene_names(), ", ")))
+      ->capture_default_str();
+  cmd->add_option("--view", a->view, "view name or index (default: the first)");
+  cmd->add_option("--technique", a->technique, "alchemy|sao|mssao|ue4")->capture_default_str();
+  cmd->add_option("--width", a->width)->capture_default_str();
+  cmd->add_option("--height", a->height)->capture_default_str();
+  cmd->add_option("--samples", a->samples, "samples per pixel (default: the technique's)");
+  cmd->add_option("--radius", a->radius, "radius in scene units");
+  cmd->add_option("--bias", a->bias);
+  cmd->add_option("--intensity", a->intensity);
+  cmd->add_option("--contrast", a->contrast, "Alchemy's k, UE4's power");
+  cmd->add_option("--blur", a->blur, "none|gaussian|bilateral (default bilateral)");
+  cmd->add_option("--level-weights", a->level_weights, "MSSAO: five level intensities")
+      ->delimiter(',');
+  cmd->add_option("--outputs", a->outputs, "all, or a list of no_ao,with_ao,ao_only,ao_float")
+      ->capture_default_str();
+  cmd->add_option("--runs", a->runs, "timed runs after one warm-up (median reported)")
+      ->capture_default_str();
+  cmd->add_option("--out", a->out, "output directory")->capture_default_str();
+  cmd->callback([a, &rc] {
+    try {
+      rc = run_render(*a);
+    } catch (const std::exception& e) {
+      fmt::print(stderr, "aosuite render: {}\n", e.what());
+      rc = kExitError;
+    }
+  });
+}
+
+}  // namespace aosuite::cli
+
+// Entry point of libaosuite_gl.so, which `aosuite` loads only for the commands that need
+// OpenGL: Mesa, LLVM and OpenImageIO cost hundreds of milliseconds of start-up that
+// `aosuite compare` must not pay.
+extern "C" int aosuite_gl_main(int argc, char** argv) {
+  CLI::App app{"aosuite: rendering commands"};
+  app.require_subcommand(1);
+  int rc = aosuite::cli::kExitSame;
+  aosuite::cli::add_render_command(app, rc);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? 0 : aosuite::cli::kExitError;
+  }
+  return rc;
+}

@@ -1,0 +1,32 @@
+// Pass 2: the AO term, one implementation per technique, each writing visibility in [0, 1]
+// (1 = unoccluded) to an R32F target at full resolution.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "renderer/frame.hpp"
+#include "renderer/technique.hpp"
+
+namespace aosuite::renderer {
+
+class AoPass {
+ public:
+  virtual ~AoPass() = default;
+  // Returns the time of each sub-pass (e.g. SAO's pyramid, MSSAO's levels).
+  virtual std::vector<PassTime> run(const GBuffer& g, const Camera& camera, const AoParams& params,
+                                    GLuint out_fb) = 0;
+};
+
+std::unique_ptr<AoPass> make_ao_pass(Technique technique);
+
+// SAO's discrepancy-minimising spiral turns for s samples (G3D's table), 7 beyond it.
+int spiral_turns(int samples);
+
+// Sets the uniforms every estimator shares (u_samples, u_radius, ...), camera included.
+void set_ao_uniforms(GLuint program, const AoParams& params, const Camera& camera);
+
+// Binds `textures` to units 0..n-1 and the sampler uniforms named alongside them.
+void bind_textures(GLuint program, std::initializer_list<std::pair<const char*, GLuint>> textures);
+
+}  // namespace aosuite::renderer

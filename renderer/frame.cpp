@@ -1,0 +1,85 @@
+#include "renderer/frame.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace aosuite::renderer {
+namespace {
+
+double now_ms() {
+  return std::chrono::duration<double, std::milli>(
+             std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
+
+}  // namespace
+
+Camera make_camera(const View& v, int width, int height) {
+  Camera c;
+  c.width = width, c.height = height;
+  glm::vec3 up = v.up;
+  // Looking straight along `up` leaves lookAt undefined: pick another up vector.
+  if (glm::length(glm::cross(glm::normalize(v.target - v.eye), up)) < 1e-6f) up = {0, 0, 1};
+  c.view = glm::lookAt(v.eye, v.target, up);
+  const float t = std::tan(glm::radians(v.fovy_degrees) * 0.5f);
+  const float aspect = static_cast<float>(width) / static_cast<float>(height);
+  c.ndc_to_view = {t * aspect, t};
+  c.proj_scale = static_cast<float>(height) / (2 * t);
+  c.projection = glm::mat4(0);
+  c.projection[0][0] = 1 / (t * aspect);
+  c.projection[1][1] = 1 / t;
+  c.projection[2][3] = -1;      // w = -z_view
+  c.projection[3][2] = v.near;  // z_clip = near  ->  depth = near / distance
+  return c;
+}
+
+GBuffer make_gbuffer(int width, int height) {
+  GBuffer g;
+  g.width = width, g.height = height;
+  g.depth = make_texture(GL_R32F, width, height);
+  g.normal = make_texture(GL_RGBA16F, width, height);
+  g.albedo = make_texture(GL_RGBA8, width, height);
+  g.zbuffer = make_texture(GL_DEPTH_COMPONENT32F, width, height);
+  g.fb = make_framebuffer({g.depth.get(), g.normal.get(), g.albedo.get()}, g.zbuffer.get());
+  return g;
+}
+
+void set_camera_uniforms(GLuint program, const Camera& camera) {
+  glProgramUniform2f(program, glGetUniformLocation(program, "u_ndc_to_view"), camera.ndc_to_view.x,
+                     camera.ndc_to_view.y);
+  glProgramUniform1f(program, glGetUniformLocation(program, "u_proj_scale"), camera.proj_scale);
+}
+
+void draw_fullscreen(GLuint fb, int width, int height) {
+  static GLuint empty_vao = [] {
+    GLuint id = 0;
+    glCreateVertexArrays(1, &id);
+    return id;
+  }();
+  glBindFramebuffer(GL_FRAMEBUFFER, fb);
+  glViewport(0, 0, width, height);
+  glDisable(GL_DEPTH_TEST);
+  glBindVertexArray(empty_vao);
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+}
+
+PassTimer::PassTimer(std::string name) : name_(std::move(name)) {
+  GLuint id = 0;
+  glCreateQueries(GL_TIME_ELAPSED, 1, &id);
+  query_ = Query(id);
+  glFinish();
+  start_ms_ = now_ms();
+  glBeginQuery(GL_TIME_ELAPSED, id);
+}
+
+PassTime PassTimer::finish() {
+  glEndQuery(GL_TIME_ELAPSED);
+  glFinish();
+  const double wall = now_ms() - start_ms_;
+  GLuint64 ns = 0;
+  glGetQueryObjectui64v(query_.get(), GL_QUERY_RESULT, &ns);
+  return {name_, static_cast<double>(ns) * 1e-6, wall};
+}
+
+}  // namespace aosuite::renderer

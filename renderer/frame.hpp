@@ -1,0 +1,57 @@
+// What every pass shares: the camera, the G-buffer, and per-pass timing.
+#pragma once
+
+#include <glm/glm.hpp>
+#include <string>
+#include <vector>
+
+#include "renderer/gl_objects.hpp"
+#include "renderer/scene.hpp"
+
+namespace aosuite::renderer {
+
+struct Camera {
+  int width = 0, height = 0;
+  glm::mat4 view{1}, projection{1};
+  glm::vec2 ndc_to_view{1};  // (tan(fovy/2) * aspect, tan(fovy/2))
+  float proj_scale = 1;      // pixels covered by 1 unit at distance 1: H / (2 tan(fovy/2))
+};
+// Reversed-Z infinite perspective: depth = near / z, so DEPTH32F keeps precision from the
+// near plane to any distance (near/far ratios of 1e-4 to 1e6 in the stress tests).
+Camera make_camera(const View& view, int width, int height);
+
+struct GBuffer {
+  int width = 0, height = 0;
+  Texture depth;    // R32F linear view depth; 0 = background
+  Texture normal;   // RGBA16F view-space normal
+  Texture albedo;   // RGBA8
+  Texture zbuffer;  // DEPTH32F, reversed
+  Framebuffer fb;
+};
+GBuffer make_gbuffer(int width, int height);
+
+// Sets u_ndc_to_view and u_proj_scale on `program` (each is skipped if the program lacks it).
+void set_camera_uniforms(GLuint program, const Camera& camera);
+
+// Draws the full-screen triangle into `fb` at the given size.
+void draw_fullscreen(GLuint fb, int width, int height);
+
+struct PassTime {
+  std::string pass;
+  double gpu_ms = 0;   // GL_TIME_ELAPSED
+  double wall_ms = 0;  // glFinish to glFinish
+};
+
+// Times one pass: construct before issuing its GL work, call finish() after.
+class PassTimer {
+ public:
+  explicit PassTimer(std::string name);
+  PassTime finish();
+
+ private:
+  std::string name_;
+  Query query_;
+  double start_ms_;
+};
+
+}  // namespace aosuite::renderer

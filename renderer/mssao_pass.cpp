@@ -1,0 +1,106 @@
+// Multi-Scale AO (Hoang & Low 2012) with Alchemy as the per-level estimator: five
+// resolutions, each with its own intensity, combined coarse to fine through a depth- and
+// normal-aware upsampling. Levels coarser than the last non-zero weight are not computed;
+// a zero-weight level in between is only downsampled and passed through.
+#include <algorithm>
+#include <array>
+
+#include "renderer/ao_pass.hpp"
+
+namespace aosuite::renderer {
+namespace {
+
+constexpr int kLevels = 5;
+constexpr float kMaxPixelRadius = 5;      // r_max: every level looks a few pixels around
+constexpr float kDepthThreshold = 0.05f;  // median downsampling: relative depth span
+
+struct Level {
+  int width = 0, height = 0;
+  Texture depth, normal, result;  // result: RG = (max occlusion, summed occlusion)
+  Framebuffer gbuffer_fb, result_fb;
+};
+
+class MssaoPass final : public AoPass {
+ public:
+  MssaoPass()
+      : downsample_(make_program({"fullscreen.vert", "mssao_downsample.frag"})),
+        level_(make_program({"fullscreen.vert", "mssao_level.frag"})) {}
+
+  std::vector<PassTime> run(const GBuffer& g, const Camera& camera, const AoParams& params,
+                            GLuint out_fb) override {
+    int top = -1;  // the coarsest level that contributes
+    int contributing = 0;
+    for (int l = 0; l < kLevels; ++l) {
+      if (params.level_weights[static_cast<std::size_t>(l)] > 0) top = l, ++contributing;
+    }
+    std::vector<PassTime> times;
+    if (top < 0) {  // every weight 0: no occlusion at all
+      const float one = 1;
+      glClearNamedFramebufferfv(out_fb, GL_COLOR, 0, &one);
+      return times;
+    }
+    if (g.width != width_ || g.height != height_) allocate(g.width, g.height);
+    auto depth_of = [&](int l) { return l == 0 ? g.depth.get() : levels_[l].depth.get(); };
+    auto normal_of = [&](int l) { return l == 0 ? g.normal.get() : levels_[l].normal.get(); };
+
+    PassTimer down_timer("mssao_downsample");
+    const GLuint d = downsample_.get();
+    glProgramUniform1f(d, glGetUniformLocation(d, "u_depth_threshold"), kDepthThreshold);
+    for (int l = 1; l <= top; ++l) {
+      bind_textures(d, {{"u_depth", depth_of(l - 1)}, {"u_normal", normal_of(l - 1)}});
+      draw_fullscreen(levels_[l].gbuffer_fb.get(), levels_[l].width, levels_[l].height);
+    }
+    times.push_back(down_timer.finish());
+
+    const GLuint p = level_.get();
+    for (int l = top; l >= 0; --l) {
+      PassTimer timer("mssao_level" + std::to_string(l));
+      AoParams level_params = params;
+      level_params.intensity = params.level_weights[static_cast<std::size_t>(l)];
+      Camera level_camera = camera;
+      level_camera.proj_scale = camera.proj_scale / static_cast<float>(1 << l);
+      set_ao_uniforms(p, level_params, level_camera);
+      glProgramUniform1f(p, glGetUniformLocation(p, "u_max_pixel_radius"), kMaxPixelRadius);
+      glProgramUniform1i(p, glGetUniformLocation(p, "u_has_coarse"), l < top);
+      glProgramUniform1i(p, glGetUniformLocation(p, "u_local"), level_params.intensity > 0);
+      glProgramUniform1i(p, glGetUniformLocation(p, "u_finest"), l == 0);
+      glProgramUniform1f(p, glGetUniformLocation(p, "u_levels"), static_cast<float>(contributing));
+      const int c = std::min(l + 1, top);
+      bind_textures(p, {{"u_depth", depth_of(l)},
+                        {"u_normal", normal_of(l)},
+                        {"u_coarse", levels_[c].result.get()},
+                        {"u_coarse_depth", depth_of(c)},
+                        {"u_coarse_normal", normal_of(c)}});
+      draw_fullscreen(l == 0 ? out_fb : levels_[l].result_fb.get(),
+                      l == 0 ? g.width : levels_[l].width, l == 0 ? g.height : levels_[l].height);
+      times.push_back(timer.finish());
+    }
+    return times;
+  }
+
+ private:
+  void allocate(int width, int height) {
+    width_ = width, height_ = height;
+    for (int l = 0; l < kLevels; ++l) {
+      Level& lv = levels_[l];
+      lv.width = std::max(1, (width + (1 << l) - 1) >> l);
+      lv.height = std::max(1, (height + (1 << l) - 1) >> l);
+      lv.result = make_texture(GL_RG32F, lv.width, lv.height);
+      lv.result_fb = make_framebuffer({lv.result.get()});
+      if (l == 0) continue;  // level 0 reads the G-buffer itself
+      lv.depth = make_texture(GL_R32F, lv.width, lv.height);
+      lv.normal = make_texture(GL_RGBA16F, lv.width, lv.height);
+      lv.gbuffer_fb = make_framebuffer({lv.depth.get(), lv.normal.get()});
+    }
+  }
+
+  Program downsample_, level_;
+  std::array<Level, kLevels> levels_;
+  int width_ = 0, height_ = 0;
+};
+
+}  // namespace
+
+std::unique_ptr<AoPass> make_mssao_pass() { return std::make_unique<MssaoPass>(); }
+
+}  // namespace aosuite::renderer

@@ -1,0 +1,159 @@
+#include "renderer/renderer.hpp"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include "renderer/ao_pass.hpp"
+#include "renderer/blend_pass.hpp"
+#include "renderer/blur_pass.hpp"
+#include "renderer/gbuffer_pass.hpp"
+#include "renderer/gl_context.hpp"
+
+namespace aosuite::renderer {
+
+Outputs parse_outputs(const std::string& csv) {
+  if (csv == "all") return {};
+  Outputs o{false, false, false, false};
+  std::stringstream ss(csv);
+  for (std::string item; std::getline(ss, item, ',');) {
+    if (item == "no_ao")
+      o.no_ao = true;
+    else if (item == "with_ao")
+      o.with_ao = true;
+    else if (item == "ao_only")
+      o.ao_only = true;
+    else if (item == "ao_float")
+      o.ao_float = true;
+    else
+      throw std::invalid_argument("unknown output '" + item +
+                                  "' (no_ao, with_ao, ao_only, ao_float, all)");
+  }
+  return o;
+}
+
+struct Renderer::State {
+  std::unique_ptr<GlContext> context = make_osmesa_context();
+  GBufferPass gbuffer_pass;
+  BlurPass blur_pass;
+  BlendPass blend_pass;
+  std::map<Technique, std::unique_ptr<AoPass>> ao_passes;
+  // Targets, reallocated when the size changes.
+  int width = 0, height = 0;
+  GBuffer gbuffer;
+  Texture ao, scratch, no_ao, with_ao, ao_only;
+  Framebuffer ao_fb, scratch_fb, blend_fb;
+
+  void allocate(int w, int h) {
+    width = w, height = h;
+    gbuffer = make_gbuffer(w, h);
+    ao = make_texture(GL_R32F, w, h);
+    scratch = make_texture(GL_R32F, w, h);
+    no_ao = make_texture(GL_RGBA8, w, h);
+    with_ao = make_texture(GL_RGBA8, w, h);
+    ao_only = make_texture(GL_RGBA8, w, h);
+    ao_fb = make_framebuffer({ao.get()});
+    scratch_fb = make_framebuffer({scratch.get()});
+    blend_fb = make_framebuffer({no_ao.get(), with_ao.get(), ao_only.get()});
+  }
+
+  AoPass& ao_pass(Technique t) {
+    auto& pass = ao_passes[t];
+    if (!pass) pass = make_ao_pass(t);
+    return *pass;
+  }
+};
+
+namespace {
+
+// GL's rows run bottom to top; images run top to bottom.
+cv::Mat read_texture(GLuint tex, int w, int h, GLenum format, GLenum type, int cv_type) {
+  cv::Mat m(h, w, cv_type);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glGetTextureImage(tex, 0, format, type, static_cast<GLsizei>(m.total() * m.elemSize()), m.data);
+  check_gl("read back");
+  cv::Mat flipped;
+  cv::flip(m, flipped, 0);
+  return flipped;
+}
+
+void validate(const View& view, const RenderSettings& s) {
+  auto fail = [](const std::string& why) { throw std::invalid_argument(why); };
+  if (s.width < 1 || s.height < 1 || s.width > 16384 || s.height > 16384) {
+    fail("resolution " + std::to_string(s.width) + "x" + std::to_string(s.height) +
+         " is outside 1..16384 per side");
+  }
+  const AoParams& p = s.params;
+  if (p.samples < 1 || p.samples > 1024) fail("samples must be 1..1024");
+  if (!(p.radius > 0) || !std::isfinite(p.radius)) fail("radius must be a positive number");
+  if (!std::isfinite(p.bias) || !std::isfinite(p.intensity) || !(p.contrast > 0) ||
+      !std::isfinite(p.contrast)) {
+    fail("bias, intensity and contrast must be finite (contrast > 0)");
+  }
+  for (float w : p.level_weights) {
+    if (!(w >= 0) || !std::isfinite(w)) fail("level weights must be finite and >= 0");
+  }
+  if (!(view.near > 0) || !std::isfinite(view.near))
+    fail("view '" + view.name + "': near must be > 0");
+  if (!(view.fovy_degrees > 0 && view.fovy_degrees < 180))
+    fail("view '" + view.name + "': fovy must be in (0, 180)");
+  if (glm::length(view.target - view.eye) <= 0 ||
+      !std::isfinite(glm::length(view.target - view.eye))) {
+    fail("view '" + view.name + "': eye and target must differ");
+  }
+}
+
+}  // namespace
+
+Renderer::Renderer() : state_(std::make_unique<State>()) {}
+Renderer::~Renderer() = default;
+
+std::string Renderer::gl_description() const { return state_->context->description(); }
+
+Images Renderer::render(const Scene& scene, const View& view, const RenderSettings& s) {
+  validate(view, s);
+  State& st = *state_;
+  if (s.width != st.width || s.height != st.height) st.allocate(s.width, s.height);
+  const Camera camera = make_camera(view, s.width, s.height);
+  const GpuScene gpu_scene(scene);
+  Images out;
+
+  PassTimer gbuffer_timer("gbuffer");
+  st.gbuffer_pass.run(gpu_scene, camera, st.gbuffer);
+  out.times.push_back(gbuffer_timer.finish());
+
+  const bool want_ao = s.outputs.needs_ao();
+  if (want_ao) {
+    for (PassTime& t : st.ao_pass(s.technique).run(st.gbuffer, camera, s.params, st.ao_fb.get())) {
+      out.times.push_back(std::move(t));
+    }
+    if (s.params.blur != Blur::kNone) {
+      out.times.push_back(st.blur_pass.run(st.gbuffer, s.params.blur, st.ao.get(), st.ao_fb.get(),
+                                           st.scratch.get(), st.scratch_fb.get()));
+    }
+  }
+  if (s.outputs.no_ao || s.outputs.with_ao || s.outputs.ao_only) {
+    out.times.push_back(
+        st.blend_pass.run(st.gbuffer, want_ao ? st.ao.get() : 0, st.blend_fb.get()));
+  }
+  check_gl("render");
+
+  const int w = s.width, h = s.height;
+  auto rgba = [&](const Texture& t) {
+    return read_texture(t.get(), w, h, GL_RGBA, GL_UNSIGNED_BYTE, CV_8UC4);
+  };
+  if (s.outputs.no_ao) out.no_ao = rgba(st.no_ao);
+  if (s.outputs.with_ao) out.with_ao = rgba(st.with_ao);
+  if (s.outputs.ao_only) out.ao_only = rgba(st.ao_only);
+  out.depth = read_texture(st.gbuffer.depth.get(), w, h, GL_RED, GL_FLOAT, CV_32F);
+  if (s.outputs.ao_float) {
+    out.ao = read_texture(st.ao.get(), w, h, GL_RED, GL_FLOAT, CV_32F);
+    // The shaders guard every division; should one ever slip, fail loudly, never write it.
+    if (!cv::checkRange(out.ao, true, nullptr, 0.0, 1.0 + 1e-6)) {
+      throw std::runtime_error("AO pass produced a value outside [0, 1] or a NaN");
+    }
+  }
+  return out;
+}
+
+}  // namespace aosuite::renderer

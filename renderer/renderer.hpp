@@ -1,0 +1,48 @@
+// The pipeline: scene -> G-buffer -> AO -> blur -> blend -> images, with per-pass times.
+#pragma once
+
+#include <map>
+#include <memory>
+#include <opencv2/core.hpp>
+#include <string>
+#include <vector>
+
+#include "renderer/frame.hpp"
+#include "renderer/technique.hpp"
+
+namespace aosuite::renderer {
+
+// Which images the caller wants; passes nobody needs are not run.
+struct Outputs {
+  bool no_ao = true, with_ao = true, ao_only = true, ao_float = true;
+  bool needs_ao() const { return with_ao || ao_only || ao_float; }
+};
+Outputs parse_outputs(const std::string& csv);  // e.g. "no_ao,ao_float"; "all"
+
+struct RenderSettings {
+  int width = 1920, height = 1080;
+  Technique technique = Technique::kAlchemy;
+  AoParams params = default_params(Technique::kAlchemy);
+  Outputs outputs;
+};
+
+struct Images {
+  cv::Mat no_ao, with_ao, ao_only;  // CV_8UC4 RGBA, sRGB, top row first
+  cv::Mat ao;                       // CV_32F visibility in [0, 1]; 1 on background
+  cv::Mat depth;                    // CV_32F linear view depth; 0 on background
+  std::vector<PassTime> times;
+};
+
+class Renderer {
+ public:
+  Renderer();  // makes an OSMesa GL 4.5 core context; throws if none
+  ~Renderer();
+  std::string gl_description() const;
+  Images render(const Scene& scene, const View& view, const RenderSettings& settings);
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
+
+}  // namespace aosuite::renderer

@@ -1,0 +1,52 @@
+// Scenes: triangle meshes in world space with a colour each, and named camera views.
+#pragma once
+
+#include <glm/glm.hpp>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace aosuite::renderer {
+
+struct Mesh {
+  std::vector<glm::vec3> positions;
+  std::vector<glm::vec3> normals;  // per vertex; computed when a loader has none
+  std::vector<glm::uvec3> triangles;
+  glm::vec3 colour{0.8f};
+};
+
+struct View {
+  std::string name;
+  glm::vec3 eye{0, 1, 5};
+  glm::vec3 target{0, 0, 0};
+  glm::vec3 up{0, 1, 0};
+  float fovy_degrees = 60;
+  float near = 0.05f;  // the far plane is at infinity (reversed-Z depth)
+};
+
+struct Scene {
+  std::string name;
+  std::vector<Mesh> meshes;
+  std::vector<View> views;
+};
+
+// Area-weighted vertex normals; zero-area triangles contribute nothing and a vertex with no
+// usable triangle gets +y, so no NaN ever reaches the G-buffer.
+void compute_normals(Mesh& mesh);
+
+// Geometry builders, all with normals.
+Mesh make_box(glm::vec3 min, glm::vec3 max, glm::vec3 colour);
+Mesh make_quad(glm::vec3 corner, glm::vec3 edge_u, glm::vec3 edge_v, glm::vec3 colour);
+Mesh make_sphere(glm::vec3 centre, float radius, int segments, glm::vec3 colour);
+// A gable roof (triangular prism) over the box min..max, ridge along x, `height` above max.y.
+Mesh make_gable_roof(glm::vec3 min, glm::vec3 max, float height, glm::vec3 colour);
+
+// Uniform scaling of every mesh and view about the origin (stress tests of scene scale).
+void scale_scene(Scene& scene, float factor);
+
+// Built-in scenes that need no download: "plane", "corner", "spheres" (analytic tests),
+// "village" (six two-storey houses, open space), "workshop" (interior and exterior).
+std::vector<std::string> builtin_scene_names();
+Scene builtin_scene(std::string_view name);  // throws std::invalid_argument if unknown
+
+}  // namespace aosuite::renderer

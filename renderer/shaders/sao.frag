@@ -1,0 +1,69 @@
+#version 450 core
+#include "common.glsl"
+// Scalable AO (McGuire, Mara, Luebke 2012): depth only. Normals come from depth, taps follow
+// a spiral and read a coarser level of the depth pyramid the further out they land.
+// Per tap f = max(r^2 - v.v, 0)^3 * max((v.n - beta) / (v.v + eps r^2), 0);
+// A = max(0, 1 - sum * sigma / r^5 * 5 / s). At r = 1 this is the reference's
+// sigma / r^6 with eps = 0.01; the extra r keeps the result independent of scene scale.
+uniform sampler2D u_depth;  // the pyramid, levels 0..5
+uniform int u_samples;
+uniform float u_radius;
+uniform float u_bias;
+uniform float u_intensity;
+uniform float u_contrast;
+uniform float u_proj_scale;
+uniform float u_turns;
+layout(location = 0) out float o_ao;
+
+const int kLogMaxOffset = 3;
+uniform int u_max_level;  // MAX_MIP_LEVEL = 5, fewer for tiny images
+
+vec3 position_at(ivec2 q, vec2 size) {
+  float z = texelFetch(u_depth, q, 0).r;
+  return z > 0.0 ? view_position(vec2(q) + 0.5, size, z) : vec3(0.0);
+}
+
+// Normal from depth: per axis the neighbour difference of smaller length (gl_ssao's
+// "MinDiff"), so a depth edge on one side does not tilt the normal.
+vec3 depth_normal(ivec2 p, vec3 c, vec2 size) {
+  ivec2 hi = ivec2(size) - 1;
+  vec3 r = position_at(min(p + ivec2(1, 0), hi), size) - c;
+  vec3 l = c - position_at(max(p - ivec2(1, 0), ivec2(0)), size);
+  vec3 t = position_at(min(p + ivec2(0, 1), hi), size) - c;
+  vec3 b = c - position_at(max(p - ivec2(0, 1), ivec2(0)), size);
+  vec3 dx = dot(r, r) < dot(l, l) ? r : l;
+  vec3 dy = dot(t, t) < dot(b, b) ? t : b;
+  vec3 n = safe_normalize(cross(dx, dy));
+  return dot(n, -c) < 0.0 ? -n : n;
+}
+
+void main() {
+  ivec2 p = ivec2(gl_FragCoord.xy);
+  vec2 size = vec2(textureSize(u_depth, 0));
+  float z = texelFetch(u_depth, p, 0).r;
+  if (z <= 0.0) { o_ao = 1.0; return; }
+  vec3 c = view_position(vec2(p) + 0.5, size, z);
+  vec3 n = depth_normal(p, c, size);
+  if (dot(n, n) < 0.5) { o_ao = 1.0; return; }  // no surface to speak of
+  float ss_radius = u_proj_scale * u_radius / z;
+  float spin = spin_angle(p);
+  float r2 = u_radius * u_radius;
+  float sum = 0.0;
+  for (int i = 0; i < u_samples; ++i) {
+    float a = (float(i) + 0.5) / float(u_samples);
+    float angle = a * u_turns * 6.28 + spin;
+    float h = a * ss_radius;
+    ivec2 q = ivec2(floor(vec2(p) + 0.5 + h * vec2(cos(angle), sin(angle))));
+    int m = clamp(findMSB(max(int(h), 1)) - kLogMaxOffset, 0, u_max_level);
+    ivec2 qm = clamp(q >> m, ivec2(0), textureSize(u_depth, m) - 1);
+    float zq = texelFetch(u_depth, qm, m).r;
+    if (zq <= 0.0) continue;
+    vec3 v = view_position(vec2(clamp(q, ivec2(0), ivec2(size) - 1)) + 0.5, size, zq) - c;
+    float vv = dot(v, v);
+    float f = max(r2 - vv, 0.0);
+    sum += f * f * f * max((dot(v, n) - u_bias) / (vv + 0.01 * r2), 0.0);
+  }
+  float r5 = r2 * r2 * u_radius;
+  float a = max(0.0, 1.0 - sum * u_intensity / r5 * 5.0 / float(max(u_samples, 1)));
+  o_ao = pow(a, u_contrast);
+}
