@@ -57,6 +57,9 @@ class MssaoPass final : public AoPass {
       PassTimer timer("mssao_level" + std::to_string(l));
       AoParams level_params = params;
       level_params.intensity = params.level_weights[static_cast<std::size_t>(l)];
+      // A coarse texel's position is off by up to its footprint, which grows 2x per level;
+      // the depth-proportional bias grows with it, or flat ground self-occludes at level 4.
+      level_params.bias = params.bias * static_cast<float>(1 << l);
       Camera level_camera = camera;
       level_camera.proj_scale = camera.proj_scale / static_cast<float>(1 << l);
       set_ao_uniforms(p, level_params, level_camera);

@@ -1,0 +1,204 @@
+// The renderer's promises, checked on llvmpipe: unoccluded planes stay white, creases go
+// dark, no NaN/Inf or out-of-range value leaves a pass across extreme scales, near planes
+// and views, outputs are deterministic, and work nobody asked for is skipped.
+#include "renderer/renderer.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "renderer/scene.hpp"
+
+namespace aosuite::renderer {
+namespace {
+
+constexpr int kW = 128, kH = 96;
+const Technique kAll[] = {Technique::kAlchemy, Technique::kSao, Technique::kMssao, Technique::kUe4};
+
+Renderer& shared_renderer() {
+  static Renderer r;
+  return r;
+}
+
+RenderSettings settings(Technique t, float radius, Blur blur = Blur::kNone) {
+  RenderSettings s;
+  s.width = kW, s.height = kH, s.technique = t;
+  s.params = default_params(t);
+  s.params.radius = radius;
+  s.params.blur = blur;
+  s.params.intensity = t == Technique::kUe4 ? 1.0f : s.params.intensity;
+  return s;
+}
+
+// Mean and the share of pixels above `floor`, over geometry pixels only (depth > 0).
+struct Stats {
+  double mean = 1, above = 1, min = 1;
+  int pixels = 0;
+};
+Stats geometry_stats(const Images& img, float floor = 0.95f) {
+  Stats s{0, 0, 1, 0};
+  for (int y = 0; y < img.ao.rows; ++y) {
+    for (int x = 0; x < img.ao.cols; ++x) {
+      if (img.depth.at<float>(y, x) <= 0) continue;
+      const float a = img.ao.at<float>(y, x);
+      s.mean += a, s.above += a >= floor, s.min = std::min<double>(s.min, a), ++s.pixels;
+    }
+  }
+  if (s.pixels) s.mean /= s.pixels, s.above /= s.pixels;
+  return s;
+}
+
+Images render(const Scene& scene, std::size_t view, const RenderSettings& s) {
+  return shared_renderer().render(scene, scene.views.at(view), s);
+}
+
+TEST(Renderer, FlatUnoccludedPlaneIsWhite) {
+  // Tolerance: mean >= 0.98 and 98 % of pixels >= 0.95, for every technique, unblurred.
+  const Scene plane = builtin_scene("plane");
+  for (Technique t : kAll) {
+    const Stats s = geometry_stats(render(plane, 0, settings(t, 0.5f)));
+    EXPECT_GT(s.pixels, kW * kH / 3) << technique_name(t);
+    EXPECT_GE(s.mean, 0.98) << technique_name(t);
+    EXPECT_GE(s.above, 0.98) << technique_name(t);
+  }
+}
+
+TEST(Renderer, CornerIsDarkerThanOpenPlane) {
+  const Scene plane = builtin_scene("plane"), corner = builtin_scene("corner");
+  for (Technique t : kAll) {
+    const Stats open = geometry_stats(render(plane, 0, settings(t, 0.5f)));
+    const Stats crease = geometry_stats(render(corner, 1, settings(t, 0.5f)));
+    EXPECT_LT(crease.mean, open.mean - 0.005) << technique_name(t);
+    EXPECT_LT(crease.min, 0.75) << technique_name(t);
+  }
+}
+
+TEST(Renderer, BackgroundIsOneAndNoDarkBorderBand) {
+  const Scene plane = builtin_scene("plane");
+  for (Technique t : kAll) {
+    const Images img = render(plane, 0, settings(t, 0.5f, Blur::kBilateral));
+    double border = 0;
+    int n = 0;
+    for (int y = 0; y < kH; ++y) {
+      for (int x = 0; x < kW; ++x) {
+        const float a = img.ao.at<float>(y, x);
+        if (img.depth.at<float>(y, x) <= 0) {
+          ASSERT_EQ(a, 1.0f) << technique_name(t);
+        } else if (x < 4 || y < 4 || x >= kW - 4 || y >= kH - 4) {
+          border += a, ++n;
+        }
+      }
+    }
+    ASSERT_GT(n, 0);
+    EXPECT_GE(border / n, 0.97) << technique_name(t) << ": dark border band";
+  }
+}
+
+// The stress matrix: every technique at scene scales 1e-3..1e4 and near planes from 1e-6
+// to 1e-1 of the scene scale (near/scene-depth ratios ~1e-7..1e-2; the far plane is at
+// infinity), on the plane and the corner. The renderer throws if any AO value is NaN, Inf
+// or outside [0, 1]; the plane must stay white and the corner darker at every scale.
+TEST(RendererStress, ScalesAndNearPlanes) {
+  for (float scale : {1e-3f, 1.0f, 1e4f}) {
+    for (float near : {1e-6f, 1e-1f}) {
+      for (Technique t : kAll) {
+        Scene plane = builtin_scene("plane"), corner = builtin_scene("corner");
+        scale_scene(plane, scale);
+        scale_scene(corner, scale);
+        for (Scene* s : {&plane, &corner}) {
+          for (View& v : s->views) v.near = near * scale;
+        }
+        RenderSettings rs = settings(t, 0.5f * scale);
+        if (t == Technique::kSao) rs.params.bias *= scale;  // SAO's bias is in scene units
+        const std::string what = std::string(technique_name(t)) + " scale " +
+                                 std::to_string(scale) + " near " + std::to_string(near);
+        Stats open, crease;
+        ASSERT_NO_THROW(open = geometry_stats(render(plane, 0, rs))) << what;
+        ASSERT_NO_THROW(crease = geometry_stats(render(corner, 1, rs))) << what;
+        EXPECT_GE(open.mean, 0.97) << what;
+        EXPECT_LT(crease.mean, open.mean) << what;
+      }
+    }
+  }
+}
+
+TEST(RendererStress, GrazingViewsInsideGeometryDegenerateAndEmptyScenes) {
+  Scene degenerate{"degenerate", {}, {{"v", {0, 1, 3}, {0, 0, 0}}}};
+  Mesh m = make_quad({-2, 0, -2}, {0, 0, 4}, {4, 0, 0}, glm::vec3(0.7f));
+  const float nan = std::nanf("");
+  m.positions.insert(m.positions.end(), {{0, 0, 0}, {0, 0, 0}, {1, 0, 0}, {nan, 0, 0}});
+  m.normals.insert(m.normals.end(), 4, glm::vec3(0));
+  m.triangles.insert(m.triangles.end(), {{4, 5, 6}, {4, 4, 4}, {4, 6, 7}, {0, 1, 99}});
+  degenerate.meshes.push_back(m);
+  Scene empty{"empty", {}, {{"v", {0, 1, 3}, {0, 0, 0}}}};
+  Scene inside = builtin_scene("spheres");
+  inside.views = {{"inside", {-1.5f, 1, 0}, {0, 1, 0}}};  // the camera sits inside a sphere
+  const Scene plane = builtin_scene("plane");
+  for (Technique t : kAll) {
+    const std::string name(technique_name(t));
+    EXPECT_NO_THROW(render(plane, 1, settings(t, 0.5f))) << name << " grazing";
+    EXPECT_NO_THROW(render(inside, 0, settings(t, 0.5f))) << name << " inside";
+    Images d;
+    ASSERT_NO_THROW(d = render(degenerate, 0, settings(t, 0.5f))) << name << " degenerate";
+    EXPECT_GE(geometry_stats(d).mean, 0.97) << name;
+    const Images e = render(empty, 0, settings(t, 0.5f));
+    EXPECT_EQ(cv::countNonZero(e.ao != 1.0f), 0) << name << ": empty scene must be all 1";
+  }
+}
+
+TEST(Renderer, SameInputsGiveIdenticalBytes) {
+  const Scene village = builtin_scene("village");
+  for (Technique t : kAll) {
+    const RenderSettings s = settings(t, default_params(t).radius, Blur::kBilateral);
+    const Images a = render(village, 0, s), b = render(village, 0, s);
+    EXPECT_EQ(cv::norm(a.ao, b.ao, cv::NORM_INF), 0) << technique_name(t);
+    EXPECT_EQ(cv::norm(a.with_ao, b.with_ao, cv::NORM_INF), 0) << technique_name(t);
+  }
+}
+
+bool has_pass(const Images& img, const std::string& name) {
+  return std::any_of(img.times.begin(), img.times.end(),
+                     [&](const PassTime& p) { return p.pass == name; });
+}
+
+TEST(Renderer, SkipsWorkNobodyAskedFor) {
+  const Scene village = builtin_scene("village");
+  RenderSettings s = settings(Technique::kAlchemy, 1, Blur::kGaussian);
+  s.outputs = parse_outputs("no_ao");
+  const Images no_ao = render(village, 0, s);
+  EXPECT_FALSE(has_pass(no_ao, "ao"));
+  EXPECT_FALSE(has_pass(no_ao, "blur"));
+  EXPECT_TRUE(no_ao.ao.empty());
+  EXPECT_FALSE(no_ao.no_ao.empty());
+
+  s.outputs = parse_outputs("ao_float");
+  s.params.blur = Blur::kNone;
+  const Images raw = render(village, 0, s);
+  EXPECT_TRUE(has_pass(raw, "ao"));
+  EXPECT_FALSE(has_pass(raw, "blur"));
+  EXPECT_FALSE(has_pass(raw, "blend"));
+
+  RenderSettings m = settings(Technique::kMssao, 2);
+  m.params.level_weights = {1.0f, 0.5f, 0, 0, 0};
+  const Images two = render(village, 0, m);
+  EXPECT_TRUE(has_pass(two, "mssao_level1"));
+  EXPECT_FALSE(has_pass(two, "mssao_level2"));
+  EXPECT_FALSE(has_pass(two, "mssao_level4"));
+}
+
+TEST(Renderer, RejectsAbsurdSettings) {
+  const Scene plane = builtin_scene("plane");
+  RenderSettings s = settings(Technique::kAlchemy, 1);
+  s.width = 100000;
+  EXPECT_THROW(render(plane, 0, s), std::invalid_argument);
+  s = settings(Technique::kAlchemy, std::nanf(""));
+  EXPECT_THROW(render(plane, 0, s), std::invalid_argument);
+  Scene bad = plane;
+  bad.views[0].near = 0;
+  EXPECT_THROW(render(bad, 0, settings(Technique::kSao, 1)), std::invalid_argument);
+  EXPECT_THROW(builtin_scene("atlantis"), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace aosuite::renderer
