@@ -1,26 +1,49 @@
 #include "renderer/ao_pass.hpp"
 
 #include <array>
+#include <stdexcept>
 
 namespace aosuite::renderer {
 
-std::unique_ptr<AoPass> make_alchemy_pass();
-std::unique_ptr<AoPass> make_sao_pass();
-std::unique_ptr<AoPass> make_ue4_pass();
-std::unique_ptr<AoPass> make_mssao_pass();
+std::unique_ptr<AoPass> make_sao_pass();    // sao_pass.cpp
+std::unique_ptr<AoPass> make_mssao_pass();  // mssao_pass.cpp
+
+namespace {
+
+// A technique that is one full-screen draw over the G-buffer's depth and normals:
+// Alchemy AO (alchemy.frag) and UE4 AO (ue4.frag); each shader's header has the estimator.
+class GBufferAoPass final : public AoPass {
+ public:
+  explicit GBufferAoPass(const char* fragment)
+      : program_(make_program({"fullscreen.vert", fragment})) {}
+  std::vector<PassTime> run(const GBuffer& g, const Camera& camera, const AoParams& params,
+                            GLuint out_fb) override {
+    PassTimer timer("ao");
+    const GLuint p = program_.get();
+    set_ao_uniforms(p, params, camera);
+    bind_textures(p, {{"u_depth", g.depth.get()}, {"u_normal", g.normal.get()}});
+    draw_fullscreen(out_fb, g.width, g.height);
+    return {timer.finish()};
+  }
+
+ private:
+  Program program_;
+};
+
+}  // namespace
 
 std::unique_ptr<AoPass> make_ao_pass(Technique technique) {
   switch (technique) {
     case Technique::kAlchemy:
-      return make_alchemy_pass();
+      return std::make_unique<GBufferAoPass>("alchemy.frag");
     case Technique::kSao:
       return make_sao_pass();
     case Technique::kUe4:
-      return make_ue4_pass();
+      return std::make_unique<GBufferAoPass>("ue4.frag");
     case Technique::kMssao:
       return make_mssao_pass();
   }
-  return make_alchemy_pass();
+  throw std::invalid_argument("unknown technique");
 }
 
 int spiral_turns(int samples) {
