@@ -22,7 +22,7 @@ class GBufferAoPass final : public AoPass {
     const GLuint p = program_.get();
     set_ao_uniforms(p, params, camera);
     bind_textures(p, {{"u_depth", g.depth.get()}, {"u_normal", g.normal.get()}});
-    draw_fullscreen(out_fb, g.width, g.height);
+    draw_geometry_pixels(out_fb, g.width, g.height);
     return {timer.finish()};
   }
 

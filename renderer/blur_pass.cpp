@@ -18,10 +18,10 @@ PassTime BlurPass::run(const GBuffer& g, Blur blur, GLuint ao, GLuint ao_fb, GLu
   glProgramUniform1f(p, glGetUniformLocation(p, "u_sharpness"), kEdgeSharpness);
   glProgramUniform2i(p, glGetUniformLocation(p, "u_axis"), 1, 0);
   bind_textures(p, {{"u_ao", ao}, {"u_depth", g.depth.get()}});
-  draw_fullscreen(scratch_fb, g.width, g.height);
+  draw_geometry_pixels(scratch_fb, g.width, g.height);
   glProgramUniform2i(p, glGetUniformLocation(p, "u_axis"), 0, 1);
   bind_textures(p, {{"u_ao", scratch}, {"u_depth", g.depth.get()}});
-  draw_fullscreen(ao_fb, g.width, g.height);
+  draw_geometry_pixels(ao_fb, g.width, g.height);
   return timer.finish();
 }
 

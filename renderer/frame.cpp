@@ -51,17 +51,36 @@ void set_camera_uniforms(GLuint program, const Camera& camera) {
   glProgramUniform1f(program, glGetUniformLocation(program, "u_proj_scale"), camera.proj_scale);
 }
 
-void draw_fullscreen(GLuint fb, int width, int height) {
-  static GLuint empty_vao = [] {
+namespace {
+
+void bind_fullscreen(GLuint fb, int width, int height) {
+  static const GLuint empty_vao = [] {
     GLuint id = 0;
     glCreateVertexArrays(1, &id);
     return id;
   }();
   glBindFramebuffer(GL_FRAMEBUFFER, fb);
   glViewport(0, 0, width, height);
-  glDisable(GL_DEPTH_TEST);
   glBindVertexArray(empty_vao);
+}
+
+}  // namespace
+
+void draw_fullscreen(GLuint fb, int width, int height) {
+  bind_fullscreen(fb, width, height);
+  glDisable(GL_DEPTH_TEST);
   glDrawArrays(GL_TRIANGLES, 0, 3);
+}
+
+void draw_geometry_pixels(GLuint fb, int width, int height) {
+  const float one = 1;
+  glClearNamedFramebufferfv(fb, GL_COLOR, 0, &one);
+  bind_fullscreen(fb, width, height);
+  glEnable(GL_DEPTH_TEST);
+  glDepthMask(GL_FALSE);
+  glDepthFunc(GL_LESS);  // the triangle is at depth 0: passes only where geometry stored > 0
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  glDisable(GL_DEPTH_TEST);
 }
 
 PassTimer::PassTimer(std::string name) : name_(std::move(name)) {

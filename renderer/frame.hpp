@@ -36,6 +36,11 @@ void set_camera_uniforms(GLuint program, const Camera& camera);
 // Draws the full-screen triangle into `fb` at the given size.
 void draw_fullscreen(GLuint fb, int width, int height);
 
+// The same, but only where there is geometry: `fb` must carry the G-buffer's depth buffer,
+// whose background is 0 (reversed Z), so the depth test rejects sky pixels before they are
+// shaded. Colour attachment 0 is first cleared to 1, the AO of the sky.
+void draw_geometry_pixels(GLuint fb, int width, int height);
+
 struct PassTime {
   std::string pass;
   double gpu_ms = 0;   // GL_TIME_ELAPSED

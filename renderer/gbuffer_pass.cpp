@@ -64,6 +64,7 @@ void GBufferPass::run(const GpuScene& scene, const Camera& camera, const GBuffer
   glViewport(0, 0, g.width, g.height);
   const float zero[4] = {0, 0, 0, 0};
   for (GLint i = 0; i < 3; ++i) glClearBufferfv(GL_COLOR, i, zero);
+  glDepthMask(GL_TRUE);       // geometry-only passes turn depth writes off
   const float far_depth = 0;  // reversed Z: 0 is infinitely far
   glClearBufferfv(GL_DEPTH, 0, &far_depth);
   glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);

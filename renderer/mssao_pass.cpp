@@ -74,8 +74,11 @@ class MssaoPass final : public AoPass {
                         {"u_coarse", levels_[c].result.get()},
                         {"u_coarse_depth", depth_of(c)},
                         {"u_coarse_normal", normal_of(c)}});
-      draw_fullscreen(l == 0 ? out_fb : levels_[l].result_fb.get(),
-                      l == 0 ? g.width : levels_[l].width, l == 0 ? g.height : levels_[l].height);
+      if (l == 0) {
+        draw_geometry_pixels(out_fb, g.width, g.height);
+      } else {
+        draw_fullscreen(levels_[l].result_fb.get(), levels_[l].width, levels_[l].height);
+      }
       times.push_back(timer.finish());
     }
     return times;

@@ -52,8 +52,9 @@ struct Renderer::State {
     no_ao = make_texture(GL_RGBA8, w, h);
     with_ao = make_texture(GL_RGBA8, w, h);
     ao_only = make_texture(GL_RGBA8, w, h);
-    ao_fb = make_framebuffer({ao.get()});
-    scratch_fb = make_framebuffer({scratch.get()});
+    // Full-resolution AO targets share the G-buffer's depth so sky pixels are never shaded.
+    ao_fb = make_framebuffer({ao.get()}, gbuffer.zbuffer.get());
+    scratch_fb = make_framebuffer({scratch.get()}, gbuffer.zbuffer.get());
     blend_fb = make_framebuffer({no_ao.get(), with_ao.get(), ao_only.get()});
   }
 

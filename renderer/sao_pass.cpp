@@ -39,7 +39,7 @@ class SaoPass final : public AoPass {
     set_ao_uniforms(p, params, camera);
     glProgramUniform1i(p, glGetUniformLocation(p, "u_max_level"), levels_ - 1);
     bind_textures(p, {{"u_depth", tex}});
-    draw_fullscreen(out_fb, g.width, g.height);
+    draw_geometry_pixels(out_fb, g.width, g.height);
     return {pyramid, ao_timer.finish()};
   }
 
