@@ -17,32 +17,6 @@ bool pixel_differs(const unsigned char* a, const unsigned char* b, const int* mi
   return false;
 }
 
-void merge_row(MismatchTally& t, int y, std::uint64_t n, int first, int last) {
-  if (n == 0) return;
-  if (t.count == 0) {
-    t = {n, y, first, y, last};
-    return;
-  }
-  t.count += n;
-  t.top = std::min(t.top, y);
-  t.bottom = std::max(t.bottom, y);
-  t.left = std::min(t.left, first);
-  t.right = std::max(t.right, last);
-}
-
-void merge(MismatchTally& into, const MismatchTally& t) {
-  if (t.count == 0) return;
-  if (into.count == 0) {
-    into = t;
-    return;
-  }
-  into.count += t.count;
-  into.top = std::min(into.top, t.top);
-  into.bottom = std::max(into.bottom, t.bottom);
-  into.left = std::min(into.left, t.left);
-  into.right = std::max(into.right, t.right);
-}
-
 struct RowTally {
   std::uint64_t count = 0;
   int first = -1, last = -1;  // first and last mismatching pixel
@@ -109,7 +83,7 @@ MismatchTally count_rows(const unsigned char* a, const unsigned char* b, int wid
   const std::size_t stride = std::size_t(width) * 4;
   for (int y = y0; y < y1; ++y) {
     const RowTally r = count_row(a + y * stride, b + y * stride, width, min_delta);
-    merge_row(t, y, r.count, r.first, r.last);
+    t.add(y, r.count, r.first, r.last);
   }
   return t;
 }
@@ -126,7 +100,7 @@ MismatchTally count_mismatches(const unsigned char* a, const unsigned char* b, i
       [&](const cv::Range& r) {
         const MismatchTally t = count_rows(a, b, width, r.start, r.end, min_delta.data());
         std::lock_guard lock(m);
-        merge(total, t);
+        total.merge(t);
       },
       std::max(1.0, pixels / (1 << 18)));
   return total;
@@ -138,7 +112,7 @@ MismatchTally count_mismatches_scalar(const unsigned char* a, const unsigned cha
   for (int y = 0; y < height; ++y) {
     for (int x = 0; x < width; ++x) {
       const std::size_t off = (std::size_t(y) * width + x) * 4;
-      if (pixel_differs(a + off, b + off, min_delta.data())) merge_row(t, y, 1, x, x);
+      if (pixel_differs(a + off, b + off, min_delta.data())) t.add(y, 1, x, x);
     }
   }
   return t;

@@ -2,14 +2,35 @@
 // pixels whose channel difference reaches a per-channel threshold and bound them.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 
 namespace aosuite {
 
+// A count of mismatching pixels and their bounding box; every comparison path tallies
+// into one of these, per thread, and merges them.
 struct MismatchTally {
   std::uint64_t count = 0;
   int top = 0, left = 0, bottom = 0, right = 0;  // valid when count > 0
+
+  // n mismatches on row y, the first at column `first` and the last at `last`.
+  void add(int y, std::uint64_t n, int first, int last) {
+    if (n == 0) return;
+    merge({n, y, first, y, last});
+  }
+  void merge(const MismatchTally& t) {
+    if (t.count == 0) return;
+    if (count == 0) {
+      *this = t;
+      return;
+    }
+    count += t.count;
+    top = std::min(top, t.top);
+    bottom = std::max(bottom, t.bottom);
+    left = std::min(left, t.left);
+    right = std::max(right, t.right);
+  }
 };
 
 // a and b are tightly packed RGBA8 images of width x height. A pixel mismatches when, for

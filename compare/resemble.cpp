@@ -208,27 +208,6 @@ class PixelJudge {
   const Settings& s_;
 };
 
-struct Tally {
-  std::uint64_t count = 0;
-  Bounds b;
-  void add(int x, int y) {
-    b = count ? Bounds{std::min(b.top, y), std::min(b.left, x), std::max(b.bottom, y),
-                       std::max(b.right, x)}
-              : Bounds{y, x, y, x};
-    ++count;
-  }
-  void merge(const Tally& t) {
-    if (t.count == 0) return;
-    if (count == 0) {
-      *this = t;
-      return;
-    }
-    count += t.count;
-    b = {std::min(b.top, t.b.top), std::min(b.left, t.b.left), std::max(b.bottom, t.b.bottom),
-         std::max(b.right, t.b.right)};
-  }
-};
-
 // Resemble skips every sixth row and column of large images, in antialiasing mode only.
 bool skipped(int x, int y, bool skip) { return skip && (x % 6 == 0 || y % 6 == 0); }
 
@@ -250,7 +229,7 @@ cv::Mat as_seen(const cv::Mat& img, int w, int h, CanvasAlpha model) {
 // When Resemble returns early it stops after the first pixel, in its column-major order,
 // at which the running percentage exceeds the threshold. Our pass is row-major and
 // complete, so replay that order over the mismatch mask.
-Tally truncate_early(const cv::Mat& mask, bool skip, double threshold) {
+MismatchTally truncate_early(const cv::Mat& mask, bool skip, double threshold) {
   const int w = mask.cols, h = mask.rows;
   const double pixels = double(h) * double(w);
   auto above = [&](std::uint64_t n) { return (double(n) / pixels) * 100 > threshold; };
@@ -275,11 +254,11 @@ Tally truncate_early(const cv::Mat& mask, bool skip, double threshold) {
       }
     }
   }
-  Tally t;
+  MismatchTally t;
   for (int y = 0; y < h; ++y) {
     const unsigned char* row = mask.ptr<unsigned char>(y);
     for (int x = 0; x < std::min(w, stop_x + 1); ++x) {
-      if (row[x] && (x < stop_x || y <= stop_y)) t.add(x, y);
+      if (row[x] && (x < stop_x || y <= stop_y)) t.add(y, 1, x, x);
     }
   }
   return t;
@@ -303,7 +282,7 @@ Result compare(const cv::Mat& a, const cv::Mat& b, const Options& options) {
       options.bounding_boxes || options.ignored_boxes || options.ignore_areas_colored_with;
 
   Result r;
-  Tally tally;
+  MismatchTally tally;
   if (!s.ignore_colors && !s.ignore_antialiasing && !has_area &&
       !(options.produce_diff && !compare_only) && !stops_early) {
     // The common case: only thresholds decide, so the vectorised counter serves.
@@ -315,9 +294,7 @@ Result compare(const cv::Mat& a, const cv::Mat& b, const Options& options) {
       while (d < 256 && similar(0, d, tol[c])) ++d;
       min_delta[c] = d;
     }
-    const MismatchTally m = count_mismatches(d1.data, d2.data, w, h, min_delta);
-    tally.count = m.count;
-    tally.b = {m.top, m.left, m.bottom, m.right};
+    tally = count_mismatches(d1.data, d2.data, w, h, min_delta);
   } else {
     if (options.produce_diff && !compare_only) r.diff = cv::Mat::zeros(h, w, CV_8UC4);
     cv::Mat mask;
@@ -327,12 +304,12 @@ Result compare(const cv::Mat& a, const cv::Mat& b, const Options& options) {
     cv::parallel_for_(
         cv::Range(0, h),
         [&](const cv::Range& rows) {
-          Tally local;
+          MismatchTally local;
           unsigned char* diff = r.diff.empty() ? nullptr : r.diff.data;
           for (int y = rows.start; y < rows.end; ++y) {
             for (int x = 0; x < w; ++x) {
               if (skipped(x, y, skip) || !judge.judge(x, y, diff)) continue;
-              local.add(x, y);
+              local.add(y, 1, x, x);
               if (!mask.empty()) mask.at<unsigned char>(y, x) = 1;
             }
           }
@@ -349,7 +326,8 @@ Result compare(const cv::Mat& a, const cv::Mat& b, const Options& options) {
   r.same_dimensions = a.cols == b.cols && a.rows == b.rows;
   r.width_difference = a.cols - b.cols;
   r.height_difference = a.rows - b.rows;
-  r.diff_bounds = tally.count ? tally.b : Bounds{h, w, 0, 0};
+  r.diff_bounds =
+      tally.count ? Bounds{tally.top, tally.left, tally.bottom, tally.right} : Bounds{h, w, 0, 0};
   r.analysis_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return r;

@@ -65,14 +65,4 @@ void set_ao_uniforms(GLuint p, const AoParams& params, const Camera& camera) {
   glProgramUniform1f(p, glGetUniformLocation(p, "u_max_pixel_radius"), 1e30f);
 }
 
-void bind_textures(GLuint program, std::initializer_list<std::pair<const char*, GLuint>> textures) {
-  glUseProgram(program);
-  GLint unit = 0;
-  for (const auto& [name, tex] : textures) {
-    glBindTextureUnit(static_cast<GLuint>(unit), tex);
-    glProgramUniform1i(program, glGetUniformLocation(program, name), unit);
-    ++unit;
-  }
-}
-
 }  // namespace aosuite::renderer

@@ -26,7 +26,4 @@ int spiral_turns(int samples);
 // Sets the uniforms every estimator shares (u_samples, u_radius, ...), camera included.
 void set_ao_uniforms(GLuint program, const AoParams& params, const Camera& camera);
 
-// Binds `textures` to units 0..n-1 and the sampler uniforms named alongside them.
-void bind_textures(GLuint program, std::initializer_list<std::pair<const char*, GLuint>> textures);
-
 }  // namespace aosuite::renderer

@@ -1,7 +1,5 @@
 #include "renderer/blend_pass.hpp"
 
-#include "renderer/ao_pass.hpp"
-
 namespace aosuite::renderer {
 
 BlendPass::BlendPass() : program_(make_program({"fullscreen.vert", "blend.frag"})) {}

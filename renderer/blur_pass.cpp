@@ -1,7 +1,5 @@
 #include "renderer/blur_pass.hpp"
 
-#include "renderer/ao_pass.hpp"
-
 namespace aosuite::renderer {
 
 namespace {

@@ -83,6 +83,16 @@ void draw_geometry_pixels(GLuint fb, int width, int height) {
   glDisable(GL_DEPTH_TEST);
 }
 
+void bind_textures(GLuint program, std::initializer_list<std::pair<const char*, GLuint>> textures) {
+  glUseProgram(program);
+  GLint unit = 0;
+  for (const auto& [name, tex] : textures) {
+    glBindTextureUnit(static_cast<GLuint>(unit), tex);
+    glProgramUniform1i(program, glGetUniformLocation(program, name), unit);
+    ++unit;
+  }
+}
+
 PassTimer::PassTimer(std::string name) : name_(std::move(name)) {
   GLuint id = 0;
   glCreateQueries(GL_TIME_ELAPSED, 1, &id);

@@ -33,6 +33,10 @@ GBuffer make_gbuffer(int width, int height);
 // Sets u_ndc_to_view and u_proj_scale on `program` (each is skipped if the program lacks it).
 void set_camera_uniforms(GLuint program, const Camera& camera);
 
+// Binds `textures` to units 0..n-1 and the sampler uniforms named alongside them, and makes
+// `program` current.
+void bind_textures(GLuint program, std::initializer_list<std::pair<const char*, GLuint>> textures);
+
 // Draws the full-screen triangle into `fb` at the given size.
 void draw_fullscreen(GLuint fb, int width, int height);
 
