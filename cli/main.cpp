@@ -2,6 +2,7 @@
 #include <dlfcn.h>
 #include <fmt/format.h>
 
+#include <array>
 #include <cstring>
 #include <exception>
 #include <filesystem>
@@ -10,9 +11,23 @@
 
 namespace {
 
-// Commands that need OpenGL live in libaosuite_gl.so beside this binary, loaded on demand,
-// so that `aosuite compare` starts without loading Mesa, LLVM or OpenImageIO.
-bool is_gl_command(const char* name) { return std::strcmp(name, "render") == 0; }
+// Commands that need OpenGL live in libaosuite_gl.so beside this binary (cli/gl_main.cpp),
+// loaded on demand, so that `aosuite compare` starts without loading Mesa, LLVM or
+// OpenImageIO. Listed here for dispatch and for --help.
+struct GlCommand {
+  const char* name;
+  const char* help;
+};
+constexpr std::array kGlCommands{
+    GlCommand{"render", "Render a scene view with one AO technique"},
+};
+
+bool is_gl_command(const char* name) {
+  for (const GlCommand& c : kGlCommands) {
+    if (std::strcmp(name, c.name) == 0) return true;
+  }
+  return false;
+}
 
 int run_gl_command(int argc, char** argv) {
   const std::filesystem::path lib =
@@ -41,8 +56,7 @@ int main(int argc, char** argv) {
   int rc = aosuite::cli::kExitSame;
   aosuite::cli::add_compare_command(app, rc);
   // Listed for --help; run_gl_command handles them before parsing.
-  app.add_subcommand("render", "Render a scene view with one AO technique (see render --help)")
-      ->allow_extras();
+  for (const GlCommand& c : kGlCommands) app.add_subcommand(c.name, c.help)->allow_extras();
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -28,18 +28,6 @@ struct RenderArgs {
   std::vector<float> level_weights;
 };
 
-const rd::View& pick_view(const rd::Scene& scene, const std::string& name) {
-  if (scene.views.empty()) throw std::invalid_argument("scene '" + scene.name + "' has no views");
-  if (name.empty()) return scene.views.front();
-  for (const rd::View& v : scene.views) {
-    if (v.name == name) return v;
-  }
-  if (std::all_of(name.begin(), name.end(), ::isdigit) && std::stoul(name) < scene.views.size()) {
-    return scene.views[std::stoul(name)];
-  }
-  throw std::invalid_argument("scene '" + scene.name + "' has no view '" + name + "'");
-}
-
 void write_exr(const fs::path& path, const cv::Mat& ao) {
   const fs::path tmp = path.parent_path() / ("." + path.filename().string() + ".tmp.exr");
   auto out = OIIO::ImageOutput::create(tmp.string());
@@ -59,7 +47,7 @@ double median(std::vector<double> v) {
 
 int run_render(const RenderArgs& a) {
   rd::Scene scene = rd::builtin_scene(a.scene);
-  const rd::View& view = pick_view(scene, a.view);
+  const rd::View& view = rd::find_view(scene, a.view);
   rd::RenderSettings s;
   s.width = a.width, s.height = a.height;
   s.technique = rd::parse_technique(a.technique);
@@ -153,20 +141,3 @@ void add_render_command(CLI::App& app, int& rc) {
 }
 
 }  // namespace aosuite::cli
-
-// Entry point of libaosuite_gl.so, which `aosuite` loads only for the commands that need
-// OpenGL: Mesa, LLVM and OpenImageIO cost hundreds of milliseconds of start-up that
-// `aosuite compare` must not pay.
-extern "C" int aosuite_gl_main(int argc, char** argv) {
-  CLI::App app{"aosuite: rendering commands"};
-  app.require_subcommand(1);
-  int rc = aosuite::cli::kExitSame;
-  aosuite::cli::add_render_command(app, rc);
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
-    return code == 0 ? 0 : aosuite::cli::kExitError;
-  }
-  return rc;
-}

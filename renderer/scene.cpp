@@ -1,5 +1,6 @@
 #include "renderer/scene.hpp"
 
+#include <charconv>
 #include <cmath>
 #include <glm/gtc/constants.hpp>
 #include <stdexcept>
@@ -202,6 +203,23 @@ Scene builtin_scene(std::string_view name) {
   if (name == "workshop") return workshop();
   throw std::invalid_argument("unknown scene '" + std::string(name) +
                               "' (built in: plane, corner, spheres, village, workshop)");
+}
+
+const View& find_view(const Scene& scene, std::string_view name) {
+  if (scene.views.empty()) throw std::invalid_argument("scene '" + scene.name + "' has no views");
+  if (name.empty()) return scene.views.front();
+  for (const View& v : scene.views) {
+    if (v.name == name) return v;
+  }
+  std::size_t index = 0;
+  const auto [end, ec] = std::from_chars(name.data(), name.data() + name.size(), index);
+  if (ec == std::errc() && end == name.data() + name.size() && index < scene.views.size()) {
+    return scene.views[index];
+  }
+  std::string names;
+  for (const View& v : scene.views) names += (names.empty() ? "" : ", ") + v.name;
+  throw std::invalid_argument("scene '" + scene.name + "' has no view '" + std::string(name) +
+                              "' (views: " + names + ")");
 }
 
 }  // namespace aosuite::renderer

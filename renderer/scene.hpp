@@ -49,4 +49,8 @@ void scale_scene(Scene& scene, float factor);
 std::vector<std::string> builtin_scene_names();
 Scene builtin_scene(std::string_view name);  // throws std::invalid_argument if unknown
 
+// The view called `name`, or the view at index `name` ("0", "1"), or the first view when
+// `name` is empty; throws std::invalid_argument naming the scene's views otherwise.
+const View& find_view(const Scene& scene, std::string_view name);
+
 }  // namespace aosuite::renderer

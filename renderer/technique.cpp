@@ -1,6 +1,9 @@
 #include "renderer/technique.hpp"
 
+#include <charconv>
+#include <cmath>
 #include <stdexcept>
+#include <string>
 
 namespace aosuite::renderer {
 
@@ -65,6 +68,65 @@ AoParams default_params(Technique t) {
       break;
   }
   return p;
+}
+
+namespace {
+
+[[noreturn]] void bad_value(std::string_view key, std::string_view value, const char* why) {
+  throw std::invalid_argument("parameter " + std::string(key) + "=" + std::string(value) + ": " +
+                              why);
+}
+
+template <typename T>
+T parse_number(std::string_view key, std::string_view value) {
+  T out{};
+  const auto [end, ec] = std::from_chars(value.data(), value.data() + value.size(), out);
+  if (ec != std::errc() || end != value.data() + value.size())
+    bad_value(key, value, "not a number");
+  if constexpr (std::is_floating_point_v<T>) {
+    if (!std::isfinite(out)) bad_value(key, value, "not finite");
+  }
+  return out;
+}
+
+}  // namespace
+
+std::array<std::string_view, 7> param_names() {
+  return {"samples", "radius", "bias", "intensity", "contrast", "blur", "level_weights"};
+}
+
+void set_param(AoParams& p, std::string_view key, std::string_view value) {
+  if (key == "samples") {
+    p.samples = parse_number<int>(key, value);
+  } else if (key == "radius") {
+    p.radius = parse_number<float>(key, value);
+  } else if (key == "bias") {
+    p.bias = parse_number<float>(key, value);
+  } else if (key == "intensity") {
+    p.intensity = parse_number<float>(key, value);
+  } else if (key == "contrast") {
+    p.contrast = parse_number<float>(key, value);
+  } else if (key == "blur") {
+    p.blur = parse_blur(value);
+  } else if (key == "level_weights") {
+    std::size_t level = 0;
+    for (std::string_view rest = value; level < p.level_weights.size(); ++level) {
+      const std::size_t comma = rest.find(',');
+      p.level_weights[level] = parse_number<float>(key, rest.substr(0, comma));
+      if (comma == std::string_view::npos) {
+        rest = {};
+        break;
+      }
+      rest.remove_prefix(comma + 1);
+    }
+    if (level + 1 != p.level_weights.size())
+      bad_value(key, value, "needs five comma-separated values");
+  } else {
+    std::string names;
+    for (std::string_view n : param_names()) names += (names.empty() ? "" : ", ") + std::string(n);
+    throw std::invalid_argument("unknown parameter '" + std::string(key) + "' (known: " + names +
+                                ")");
+  }
 }
 
 }  // namespace aosuite::renderer

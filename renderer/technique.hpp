@@ -30,4 +30,12 @@ struct AoParams {
 // level weights 1.0/0.5/0.3/0.3/0.3. Biases and intensities are the published ones.
 AoParams default_params(Technique t);
 
+// Sets one parameter from text, as suites and `--param key=value` give them: samples, radius,
+// bias, intensity, contrast, blur (none|gaussian|bilateral), level_weights ("1,0.5,0.3,0.3,0.3").
+// Throws std::invalid_argument naming the key and the problem (unknown key, not a number,
+// non-finite, out of range).
+void set_param(AoParams& params, std::string_view key, std::string_view value);
+// The names set_param accepts, in a stable order.
+std::array<std::string_view, 7> param_names();
+
 }  // namespace aosuite::renderer

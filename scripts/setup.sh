@@ -9,6 +9,8 @@ PACKAGES=(
   libspng-dev libdeflate-dev libopencv-core-dev libfmt-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev libbenchmark-dev
   libosmesa6-dev libglm-dev libopenimageio-dev
+  libtomlplusplus-dev libassimp-dev libxxhash-dev libembree-dev
+  chromium
 )
 
 SUDO=""

@@ -1,0 +1,18 @@
+// Entry point of libaosuite_gl.so, which `aosuite` loads only for the commands that need
+// OpenGL: Mesa, LLVM and OpenImageIO cost hundreds of milliseconds of start-up that
+// `aosuite compare` must not pay. Each command here is also listed in main.cpp's kGlCommands.
+#include "cli/commands.hpp"
+
+extern "C" int aosuite_gl_main(int argc, char** argv) {
+  CLI::App app{"aosuite: rendering commands"};
+  app.require_subcommand(1);
+  int rc = aosuite::cli::kExitSame;
+  aosuite::cli::add_render_command(app, rc);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? 0 : aosuite::cli::kExitError;
+  }
+  return rc;
+}
