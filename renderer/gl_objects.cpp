@@ -4,9 +4,9 @@
 #include <string_view>
 #include <vector>
 
-namespace aosuite::renderer {
+#include "renderer/shader_library.hpp"
 
-std::string_view shader_source(std::string_view name);  // generated: shader_sources.cpp
+namespace aosuite::renderer {
 
 void delete_texture(GLuint id) { glDeleteTextures(1, &id); }
 void delete_framebuffer(GLuint id) { glDeleteFramebuffers(1, &id); }
@@ -57,12 +57,12 @@ Framebuffer make_framebuffer(std::initializer_list<GLuint> colour, GLuint depth,
 namespace {
 
 GLuint compile(const char* file, const std::string& defines) {
-  std::string src(shader_source(file));
+  std::string src = shader_text(file);
   // GLSL has no #include: splice the named shared files in, once each.
   for (std::size_t at; (at = src.find("#include \"")) != std::string::npos;) {
     const std::size_t end = src.find('"', at + 10);
     const std::string name = src.substr(at + 10, end - at - 10);
-    src.replace(at, end + 1 - at, shader_source(name));
+    src.replace(at, end + 1 - at, shader_text(name));
   }
   const std::size_t eol = src.find('\n');  // after "#version 450 core"
   src.insert(eol + 1, defines);
