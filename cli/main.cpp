@@ -20,6 +20,9 @@ struct GlCommand {
 };
 constexpr std::array kGlCommands{
     GlCommand{"render", "Render a scene view with one AO technique"},
+    GlCommand{"check", "Render a suite and gate each case against its golden (see check --help)"},
+    GlCommand{"bless", "Accept current renders of a suite as its goldens"},
+    GlCommand{"report", "Merge shard reports (report merge --out DIR SHARD...)"},
 };
 
 bool is_gl_command(const char* name) {

@@ -1,0 +1,94 @@
+#include "harness/case_hash.hpp"
+
+#include <dlfcn.h>
+#include <fmt/format.h>
+#include <xxhash.h>
+
+#include <memory>
+#include <span>
+
+#include "compare/image_io.hpp"
+#include "renderer/shader_library.hpp"
+
+namespace aosuite::harness {
+namespace {
+
+namespace fs = std::filesystem;
+
+class Hasher {
+ public:
+  Hasher() : state_(XXH3_createState(), XXH3_freeState) { XXH3_64bits_reset(state_.get()); }
+  template <typename T>
+  Hasher& add(std::span<const T> v) {
+    add_size(v.size());
+    XXH3_64bits_update(state_.get(), v.data(), v.size_bytes());
+    return *this;
+  }
+  Hasher& add(std::string_view s) { return add(std::span<const char>(s.data(), s.size())); }
+  template <typename T>
+  requires std::is_trivially_copyable_v<T> Hasher& add(const T& v) {
+    XXH3_64bits_update(state_.get(), &v, sizeof v);
+    return *this;
+  }
+  Hasher& add_file(const fs::path& p) {
+    add(p.filename().string());
+    const std::vector<unsigned char> bytes = read_file(p);
+    return add(std::span<const unsigned char>(bytes));
+  }
+  std::string hex() const { return fmt::format("{:016x}", XXH3_64bits_digest(state_.get())); }
+
+ private:
+  void add_size(std::size_t n) { XXH3_64bits_update(state_.get(), &n, sizeof n); }
+  std::unique_ptr<XXH3_state_t, XXH_errorcode (*)(XXH3_state_t*)> state_;
+};
+
+// The build of the code that renders: a rebuilt renderer invalidates every cached render.
+const std::string& build_hash() {
+  static const std::string hash = [] {
+    Dl_info info{};
+    if (!dladdr(reinterpret_cast<const void*>(&build_hash), &info) || !info.dli_fname)
+      return std::string("unknown");
+    return Hasher().add_file(info.dli_fname).hex();
+  }();
+  return hash;
+}
+
+}  // namespace
+
+std::string input_hash(const Case& c, const std::string& gl_description) {
+  Hasher h;
+  h.add(build_hash()).add(gl_description);
+  for (std::string_view name : renderer::shader_names())
+    h.add(name).add(renderer::shader_text(name));
+  for (const renderer::Mesh& m : c.scene->meshes) {
+    h.add(std::span(m.positions))
+        .add(std::span(m.normals))
+        .add(std::span(m.triangles))
+        .add(m.colour);
+  }
+  for (const renderer::View& v : c.scene->views) {
+    h.add(v.name).add(v.eye).add(v.target).add(v.up).add(v.fovy_degrees).add(v.near);
+  }
+  const renderer::AoParams& p = c.params;
+  h.add(c.view).add(c.technique).add(c.width).add(c.height);
+  h.add(p.samples).add(p.radius).add(p.bias).add(p.intensity).add(p.contrast).add(p.blur);
+  h.add(p.level_weights);
+  return h.hex();
+}
+
+std::string judge_hash(const Case& c, const std::string& input,
+                       const std::vector<std::vector<fs::path>>& goldens) {
+  Hasher h;
+  h.add(input);
+  const Tolerance& t = c.tolerance;
+  h.add(t.mode).add(t.max_mismatch_percent).add(t.max_channel_delta);
+  for (const resemble::Box& b : t.ignore) h.add(b.left).add(b.top).add(b.right).add(b.bottom);
+  if (!t.mask.empty()) h.add_file(t.mask);
+  for (std::size_t i = 0; i < goldens.size(); ++i) {
+    h.add(c.images[i]).add(goldens[i].size());
+    for (const fs::path& g : goldens[i]) h.add(g.parent_path().filename().string()).add_file(g);
+  }
+  return h.hex();
+}
+
+}  // namespace aosuite::harness

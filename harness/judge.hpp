@@ -1,0 +1,37 @@
+// The verdict on one rendered image against its accepted goldens, under a case's tolerance.
+#pragma once
+
+#include <filesystem>
+#include <opencv2/core.hpp>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "harness/suite.hpp"
+
+namespace aosuite::harness {
+
+enum class Status { kPass, kFail, kNew, kError };
+std::string_view status_name(Status s);  // PASS FAIL NEW ERROR
+Status parse_status(std::string_view name);
+
+struct ImageVerdict {
+  std::string image;  // no_ao | with_ao | ao_only
+  Status status = Status::kError;
+  bool identical = false;        // byte-identical to the golden: nothing was compared
+  double mismatch_percent = 0;   // Resemble's rawMisMatchPercentage against `golden`
+  std::string mismatch_text;     // its misMatchPercentage ("0.42")
+  int max_channel_delta = 0;     // largest |new - golden| over unignored pixels
+  std::filesystem::path golden;  // the accepted golden closest to the render
+  std::string message;           // why it failed or could not be judged
+  cv::Mat diff;                  // Resemble's diff image, when asked and not passing
+};
+
+// Judges `render` (the PNG bytes and their decoded RGBA) against `goldens` (accepted variants;
+// the case passes if any does). Missing goldens give kNew, unreadable ones kError (unless
+// another variant passes), a golden of another size kFail with both sizes named.
+ImageVerdict judge(std::string_view image, std::span<const unsigned char> render_png,
+                   const cv::Mat& render, const std::vector<std::filesystem::path>& goldens,
+                   const Tolerance& tolerance, bool want_diff);
+
+}  // namespace aosuite::harness

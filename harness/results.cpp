@@ -1,0 +1,156 @@
+#include "harness/results.hpp"
+
+#include <fstream>
+#include <stdexcept>
+
+#include "compare/image_io.hpp"
+
+namespace aosuite::harness {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+json to_json(const ImageVerdict& v) {
+  return {{"image", v.image},
+          {"status", status_name(v.status)},
+          {"identical", v.identical},
+          {"mismatch_percent", v.mismatch_percent},
+          {"mismatch_text", v.mismatch_text},
+          {"max_channel_delta", v.max_channel_delta},
+          {"golden", v.golden.string()},
+          {"message", v.message}};
+}
+
+ImageVerdict verdict_from_json(const json& j) {
+  ImageVerdict v;
+  v.image = j.at("image");
+  v.status = parse_status(j.at("status").get<std::string>());
+  v.identical = j.at("identical");
+  v.mismatch_percent = j.at("mismatch_percent");
+  v.mismatch_text = j.at("mismatch_text");
+  v.max_channel_delta = j.at("max_channel_delta");
+  v.golden = j.at("golden").get<std::string>();
+  v.message = j.at("message");
+  return v;
+}
+
+}  // namespace
+
+json to_json(const CaseResult& c) {
+  json images = json::array(), times = json::array(), ignore = json::array();
+  for (const ImageVerdict& v : c.images) images.push_back(to_json(v));
+  for (const renderer::PassTime& t : c.times) {
+    times.push_back({{"pass", t.pass}, {"gpu_ms", t.gpu_ms}, {"wall_ms", t.wall_ms}});
+  }
+  for (const resemble::Box& b : c.tolerance.ignore)
+    ignore.push_back({b.left, b.top, b.right, b.bottom});
+  return {{"id", c.id},
+          {"scene", c.scene},
+          {"view", c.view},
+          {"technique", c.technique},
+          {"width", c.width},
+          {"height", c.height},
+          {"params", c.params},
+          {"tolerance",
+           {{"mode", resemble::mode_name(c.tolerance.mode)},
+            {"max_mismatch_percent", c.tolerance.max_mismatch_percent},
+            {"max_channel_delta", c.tolerance.max_channel_delta},
+            {"ignore", ignore},
+            {"mask", c.tolerance.mask.string()}}},
+          {"status", status_name(c.status)},
+          {"message", c.message},
+          {"images", images},
+          {"files", c.files},
+          {"times", times},
+          {"ao_effect_less", c.ao_effect_less},
+          {"ao_effect_nothing", c.ao_effect_nothing},
+          {"input_hash", c.input_hash},
+          {"judge_hash", c.judge_hash},
+          {"reused", c.reused},
+          {"seconds", c.seconds},
+          {"bless_command", c.bless_command}};
+}
+
+CaseResult case_from_json(const json& j) {
+  CaseResult c;
+  c.id = j.at("id"), c.scene = j.at("scene"), c.view = j.at("view");
+  c.technique = j.at("technique");
+  c.width = j.at("width"), c.height = j.at("height");
+  c.params = j.at("params").get<std::map<std::string, std::string>>();
+  const json& t = j.at("tolerance");
+  c.tolerance.mode = resemble::parse_mode(t.at("mode").get<std::string>());
+  c.tolerance.max_mismatch_percent = t.at("max_mismatch_percent");
+  c.tolerance.max_channel_delta = t.at("max_channel_delta");
+  for (const json& b : t.at("ignore")) c.tolerance.ignore.push_back({b[0], b[1], b[2], b[3]});
+  c.tolerance.mask = t.at("mask").get<std::string>();
+  c.status = parse_status(j.at("status").get<std::string>());
+  c.message = j.at("message");
+  for (const json& v : j.at("images")) c.images.push_back(verdict_from_json(v));
+  c.files = j.at("files").get<std::map<std::string, std::string>>();
+  for (const json& t2 : j.at("times"))
+    c.times.push_back({t2.at("pass"), t2.at("gpu_ms"), t2.at("wall_ms")});
+  c.ao_effect_less = j.at("ao_effect_less"), c.ao_effect_nothing = j.at("ao_effect_nothing");
+  c.input_hash = j.at("input_hash"), c.judge_hash = j.at("judge_hash");
+  c.reused = j.at("reused"), c.seconds = j.at("seconds");
+  c.bless_command = j.at("bless_command");
+  return c;
+}
+
+json to_json(const RunResults& r) {
+  json cases = json::array();
+  for (const CaseResult& c : r.cases) cases.push_back(to_json(c));
+  return {{"suite", r.suite},       {"suite_file", r.suite_file}, {"gl", r.gl},
+          {"platform", r.platform}, {"shard", r.shard},           {"cases", cases}};
+}
+
+RunResults run_from_json(const json& j) {
+  RunResults r;
+  r.suite = j.at("suite"), r.suite_file = j.at("suite_file"), r.gl = j.at("gl");
+  r.platform = j.at("platform"), r.shard = j.at("shard");
+  for (const json& c : j.at("cases")) r.cases.push_back(case_from_json(c));
+  return r;
+}
+
+RunResults read_results(const fs::path& dir) {
+  const fs::path file = dir / "results.json";
+  std::ifstream in(file);
+  if (!in) throw std::runtime_error(file.string() + ": cannot read (no run results there)");
+  try {
+    return run_from_json(json::parse(in));
+  } catch (const std::exception& e) {
+    throw std::runtime_error(file.string() + ": malformed run results: " + e.what());
+  }
+}
+
+void write_results(const fs::path& dir, const RunResults& r) {
+  const std::string text = to_json(r).dump(1) + "\n";
+  write_file_atomic(dir / "results.json",
+                    {reinterpret_cast<const unsigned char*>(text.data()), text.size()});
+}
+
+Counts count(const RunResults& r) {
+  Counts n;
+  for (const CaseResult& c : r.cases) {
+    switch (c.status) {
+      case Status::kPass:
+        ++n.pass;
+        break;
+      case Status::kFail:
+        ++n.fail;
+        break;
+      case Status::kNew:
+        ++n.fresh;
+        break;
+      case Status::kError:
+        ++n.error;
+        break;
+    }
+  }
+  return n;
+}
+
+int exit_code(const Counts& c) { return c.error ? 2 : (c.fail || c.fresh) ? 1 : 0; }
+
+}  // namespace aosuite::harness

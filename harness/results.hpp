@@ -1,0 +1,59 @@
+// What a run of a suite found, case by case; saved as results.json in the report folder so a
+// report can be rebuilt or merged from shards, and so an unchanged case can be skipped.
+#pragma once
+
+#include <filesystem>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "harness/judge.hpp"
+#include "renderer/frame.hpp"
+
+namespace aosuite::harness {
+
+struct CaseResult {
+  std::string id, scene, view, technique;
+  int width = 0, height = 0;
+  std::map<std::string, std::string> params;  // every parameter the render used
+  Tolerance tolerance;
+  Status status = Status::kError;  // the worst of the images'
+  std::string message;             // render error, or the first failing image's reason
+  std::vector<ImageVerdict> images;
+  // Files in the report folder, by role: no_ao, with_ao, ao_only, golden:<image>, diff:<image>.
+  std::map<std::string, std::string> files;
+  std::vector<renderer::PassTime> times;
+  // Resemble ignoreLess / ignoreNothing mismatch between the no-AO and the AO image
+  // (the thesis's Tables 11-14): how much of the picture AO changes.
+  double ao_effect_less = 0, ao_effect_nothing = 0;
+  std::string input_hash, judge_hash;  // what the render and the verdict depended on
+  bool reused = false;                 // inputs and goldens unchanged: nothing re-rendered
+  double seconds = 0;
+  std::string bless_command;  // set for cases that are not passing
+};
+
+struct RunResults {
+  std::string suite, suite_file, gl, platform;
+  std::string shard;  // "i/n", empty when not sharded
+  std::vector<CaseResult> cases;
+};
+
+// Images are kept as paths relative to the report folder; results.json never holds pixels.
+nlohmann::json to_json(const CaseResult& c);
+CaseResult case_from_json(const nlohmann::json& j);
+nlohmann::json to_json(const RunResults& r);
+RunResults run_from_json(const nlohmann::json& j);
+
+// Reads `dir`/results.json; throws naming the file if it is missing or malformed.
+RunResults read_results(const std::filesystem::path& dir);
+void write_results(const std::filesystem::path& dir, const RunResults& r);
+
+struct Counts {
+  int pass = 0, fail = 0, fresh = 0, error = 0;
+};
+Counts count(const RunResults& r);
+// 0 all passed, 1 any failed or new, 2 any could not be judged.
+int exit_code(const Counts& c);
+
+}  // namespace aosuite::harness

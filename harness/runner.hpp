@@ -1,0 +1,54 @@
+// Runs a suite's cases: render (or reuse an unchanged render), judge against the goldens, and
+// record the result; and blesses goldens from renders, only when asked.
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <regex>
+#include <string>
+#include <vector>
+
+#include "harness/results.hpp"
+#include "harness/suite.hpp"
+
+namespace aosuite::harness {
+
+// Which cases a command acts on: a regular expression over case ids (searched, not anchored)
+// and a shard i of n (cases i, i+n, i+2n, ... of those the filter keeps).
+struct Selection {
+  std::string filter;  // empty: all
+  int shard_index = 0, shard_count = 1;
+};
+// The shard from "i/n", else from GTEST_SHARD_INDEX / GTEST_TOTAL_SHARDS (as GoogleTest and
+// Bazel set them), else 0/1. Throws std::invalid_argument on a malformed or impossible shard.
+void set_shard(Selection& s, const std::string& text);
+std::vector<const Case*> select(const Suite& suite, const Selection& s);
+
+struct RunOptions {
+  Selection selection;
+  int jobs = 1;
+  std::filesystem::path report_dir;
+  bool diff_all = false;  // diff images for passing cases too
+  bool reuse = true;      // skip cases whose inputs and goldens are unchanged
+  std::function<void(const CaseResult&, int done, int total)> progress;
+};
+
+// Renders and judges the selected cases; writes images, per-case state and results.json into
+// report_dir. Never touches goldens.
+RunResults check(const Suite& suite, const RunOptions& options);
+
+struct BlessOptions {
+  RunOptions run;
+  bool platform = false;  // write the platform's goldens instead of the generic ones
+  std::string tag;        // write an extra accepted variant <image>~<tag>.png
+};
+// Writes goldens for the selected cases from fresh (or unchanged) renders. A case that fails to
+// render is reported and its goldens are left alone. Returns one result per case: kPass when
+// blessed, kError when not.
+RunResults bless(const Suite& suite, const BlessOptions& options);
+
+// The command that blesses one case.
+std::string bless_command(const Suite& suite, const std::string& case_id);
+
+}  // namespace aosuite::harness
