@@ -1,9 +1,21 @@
 #include "renderer/scene.hpp"
 
+#include <fmt/format.h>
+
+#include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdlib>
 #include <glm/gtc/constants.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 #include <stdexcept>
+
+#include "compare/image_io.hpp"
+#include "renderer/mesh_io.hpp"
+
+#ifndef AOSUITE_ASSET_DIR
+#error "AOSUITE_ASSET_DIR (the repository's .cache/assets) must be defined by the build"
+#endif
 
 namespace aosuite::renderer {
 
@@ -30,16 +42,12 @@ Mesh make_quad(glm::vec3 corner, glm::vec3 edge_u, glm::vec3 edge_v, glm::vec3 c
   return m;
 }
 
-namespace {
-
-void append(Mesh& into, const Mesh& part) {
+void append_mesh(Mesh& into, const Mesh& part) {
   const auto base = static_cast<unsigned>(into.positions.size());
   into.positions.insert(into.positions.end(), part.positions.begin(), part.positions.end());
   into.normals.insert(into.normals.end(), part.normals.begin(), part.normals.end());
   for (const glm::uvec3& t : part.triangles) into.triangles.push_back(t + glm::uvec3(base));
 }
-
-}  // namespace
 
 Mesh make_box(glm::vec3 lo, glm::vec3 hi, glm::vec3 colour) {
   const glm::vec3 d = hi - lo;
@@ -47,12 +55,12 @@ Mesh make_box(glm::vec3 lo, glm::vec3 hi, glm::vec3 colour) {
   Mesh m;
   m.colour = colour;
   // Each face on its own vertices so normals stay flat; outward winding.
-  append(m, make_quad(lo, y, x, colour));      // -z
-  append(m, make_quad(lo + z, x, y, colour));  // +z
-  append(m, make_quad(lo, z, y, colour));      // -x
-  append(m, make_quad(lo + x, y, z, colour));  // +x
-  append(m, make_quad(lo, x, z, colour));      // -y
-  append(m, make_quad(lo + y, z, x, colour));  // +y
+  append_mesh(m, make_quad(lo, y, x, colour));      // -z
+  append_mesh(m, make_quad(lo + z, x, y, colour));  // +z
+  append_mesh(m, make_quad(lo, z, y, colour));      // -x
+  append_mesh(m, make_quad(lo + x, y, z, colour));  // +x
+  append_mesh(m, make_quad(lo, x, z, colour));      // -y
+  append_mesh(m, make_quad(lo + y, z, x, colour));  // +y
   return m;
 }
 
@@ -98,6 +106,64 @@ Mesh make_sphere(glm::vec3 centre, float radius, int segments, glm::vec3 colour)
     }
   }
   return m;
+}
+
+namespace {
+
+// Bounding box of the vertices triangles use (scans often carry stray unused vertices).
+std::pair<glm::vec3, glm::vec3> triangle_bounds(const Mesh& mesh) {
+  glm::vec3 lo(INFINITY), hi(-INFINITY);
+  for (const glm::uvec3& t : mesh.triangles) {
+    for (int k = 0; k < 3; ++k) {
+      lo = glm::min(lo, mesh.positions[t[k]]);
+      hi = glm::max(hi, mesh.positions[t[k]]);
+    }
+  }
+  return {lo, hi};
+}
+
+void transform_mesh(Mesh& mesh, const glm::mat4& m) {
+  const glm::mat3 normal_matrix = glm::transpose(glm::inverse(glm::mat3(m)));
+  for (glm::vec3& p : mesh.positions) p = glm::vec3(m * glm::vec4(p, 1));
+  for (glm::vec3& n : mesh.normals) {
+    const glm::vec3 t = normal_matrix * n;
+    const float len = glm::length(t);
+    n = len > 0 && std::isfinite(len) ? t / len : glm::vec3(0, 1, 0);
+  }
+}
+
+}  // namespace
+
+void place_mesh(Mesh& mesh, const Placement& p) {
+  if (!(glm::all(glm::greaterThan(p.scale, glm::vec3(0))) && std::isfinite(p.scale.x) &&
+        std::isfinite(p.scale.y) && std::isfinite(p.scale.z))) {
+    throw std::invalid_argument("scale must be positive and finite");
+  }
+  glm::mat4 m(1);
+  if (p.fit) {
+    const auto [lo, hi] = triangle_bounds(mesh);
+    const glm::vec3 size = hi - lo;
+    const float extent = std::max({size.x, size.y, size.z});
+    if (!(*p.fit > 0 && extent > 0 && std::isfinite(extent))) {
+      throw std::invalid_argument(
+          "cannot fit: the size must be positive and the mesh must have "
+          "a non-zero extent");
+    }
+    m = glm::scale(glm::mat4(1), glm::vec3(*p.fit / extent)) *
+        glm::translate(glm::mat4(1), -0.5f * (lo + hi));
+  }
+  const glm::vec3 r = glm::radians(p.rotate_degrees);
+  m = glm::rotate(glm::mat4(1), r.z, {0, 0, 1}) * glm::rotate(glm::mat4(1), r.y, {0, 1, 0}) *
+      glm::rotate(glm::mat4(1), r.x, {1, 0, 0}) * glm::scale(glm::mat4(1), p.scale) * m;
+  transform_mesh(mesh, m);
+  glm::vec3 shift = p.translate;
+  if (p.on_ground && !mesh.triangles.empty()) shift.y -= triangle_bounds(mesh).first.y;
+  for (glm::vec3& v : mesh.positions) v += shift;
+  for (const glm::vec3& v : mesh.positions) {
+    if (!std::isfinite(v.x + v.y + v.z)) {
+      throw std::invalid_argument("the placement makes a vertex position non-finite");
+    }
+  }
 }
 
 void scale_scene(Scene& scene, float factor) {
@@ -189,20 +255,76 @@ Scene workshop() {
   return s;
 }
 
-}  // namespace
+// The Stanford dragon (Stanford's vrip reconstruction, decimated to 47,794 triangles, near the
+// thesis's 16,191) fitted to 5 m long on a ground plane; views as in the thesis: close enough
+// to see the scales, and from a distance.
+constexpr std::string_view kDragonFile = "dragon_vrip_res3.ply";
 
-std::vector<std::string> builtin_scene_names() {
-  return {"plane", "corner", "spheres", "village", "workshop"};
+std::vector<View> dragon_views() {
+  return {{"close", {3.2f, 2.4f, 4.2f}, {0, 1.2f, 0}}, {"far", {-9, 5, 14}, {0, 1.5f, 0}}};
 }
 
-Scene builtin_scene(std::string_view name) {
-  if (name == "plane") return plane();
-  if (name == "corner") return corner();
-  if (name == "spheres") return spheres();
-  if (name == "village") return village();
-  if (name == "workshop") return workshop();
-  throw std::invalid_argument("unknown scene '" + std::string(name) +
-                              "' (built in: plane, corner, spheres, village, workshop)");
+Scene dragon() {
+  const std::filesystem::path file = downloadable_scene_file("dragon");
+  if (!std::filesystem::exists(file)) {
+    throw FileError(fmt::format(
+        "{}: not found; the dragon scene needs it: run scripts/fetch_dragon.sh", file.string()));
+  }
+  Mesh mesh = load_mesh(file);
+  mesh.colour = {0.75f, 0.7f, 0.6f};
+  Placement p;
+  p.fit = 5;
+  p.on_ground = true;
+  place_mesh(mesh, p);
+  Scene s{"dragon", {ground(40)}, dragon_views()};
+  s.meshes.push_back(std::move(mesh));
+  return s;
+}
+
+struct Builtin {
+  std::string_view name;
+  Scene (*make)();
+  std::vector<View> (*downloaded_views)();  // set for scenes that need a download
+};
+constexpr Builtin kBuiltins[] = {{"plane", plane, nullptr},       {"corner", corner, nullptr},
+                                 {"spheres", spheres, nullptr},   {"village", village, nullptr},
+                                 {"workshop", workshop, nullptr}, {"dragon", dragon, dragon_views}};
+
+const Builtin& find_builtin(std::string_view name) {
+  for (const Builtin& b : kBuiltins) {
+    if (b.name == name) return b;
+  }
+  std::string names;
+  for (const Builtin& b : kBuiltins) names += (names.empty() ? "" : ", ") + std::string(b.name);
+  throw std::invalid_argument("unknown scene '" + std::string(name) + "' (built in: " + names +
+                              "; or a .toml scene file)");
+}
+
+std::vector<std::string> builtin_names(bool downloaded) {
+  std::vector<std::string> names;
+  for (const Builtin& b : kBuiltins) {
+    if ((b.downloaded_views != nullptr) == downloaded) names.emplace_back(b.name);
+  }
+  return names;
+}
+
+}  // namespace
+
+std::vector<std::string> builtin_scene_names() { return builtin_names(false); }
+std::vector<std::string> downloadable_scene_names() { return builtin_names(true); }
+
+std::filesystem::path downloadable_scene_file(std::string_view name) {
+  if (name != "dragon") throw std::invalid_argument(fmt::format("'{}' needs no download", name));
+  const char* env = std::getenv("AOSUITE_ASSETS");
+  const std::filesystem::path dir = env && *env ? env : AOSUITE_ASSET_DIR;
+  return dir / kDragonFile;
+}
+
+Scene builtin_scene(std::string_view name) { return find_builtin(name).make(); }
+
+std::vector<View> builtin_scene_views(std::string_view name) {
+  const Builtin& b = find_builtin(name);
+  return b.downloaded_views ? b.downloaded_views() : b.make().views;
 }
 
 const View& find_view(const Scene& scene, std::string_view name) {

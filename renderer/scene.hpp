@@ -1,7 +1,9 @@
 // Scenes: triangle meshes in world space with a colour each, and named camera views.
 #pragma once
 
+#include <filesystem>
 #include <glm/glm.hpp>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -41,13 +43,41 @@ Mesh make_sphere(glm::vec3 centre, float radius, int segments, glm::vec3 colour)
 // A gable roof (triangular prism) over the box min..max, ridge along x, `height` above max.y.
 Mesh make_gable_roof(glm::vec3 min, glm::vec3 max, float height, glm::vec3 colour);
 
+// Appends `part`'s vertices and triangles to `into` (its colour is not changed).
+void append_mesh(Mesh& into, const Mesh& part);
+
+// Where a mesh goes, applied in this order: fit (centre the bounding box of its triangles on
+// the origin and scale it uniformly so its longest side is `fit`: scanned meshes come in
+// unknown units), scale (per axis, positive), rotate (degrees about x, then y, then z),
+// on_ground (lift or lower it so its lowest point is at y = 0), translate.
+struct Placement {
+  std::optional<float> fit;
+  glm::vec3 scale{1};
+  glm::vec3 rotate_degrees{0};
+  bool on_ground = false;
+  glm::vec3 translate{0};
+};
+// Moves positions and normals (by the inverse transpose, so per-axis scales keep them
+// perpendicular). Throws std::invalid_argument for a mesh with no extent to fit, a scale that
+// is not positive, or a result that is not finite.
+void place_mesh(Mesh& mesh, const Placement& placement);
+
 // Uniform scaling of every mesh and view about the origin (stress tests of scene scale).
 void scale_scene(Scene& scene, float factor);
 
 // Built-in scenes that need no download: "plane", "corner", "spheres" (analytic tests),
 // "village" (six two-storey houses, open space), "workshop" (interior and exterior).
 std::vector<std::string> builtin_scene_names();
-Scene builtin_scene(std::string_view name);  // throws std::invalid_argument if unknown
+// Built-in scenes whose mesh scripts/fetch_dragon.sh downloads: "dragon" (the Stanford dragon
+// on a ground plane, as in the thesis).
+std::vector<std::string> downloadable_scene_names();
+// The file a downloadable scene needs: in $AOSUITE_ASSETS when set, else in the repository's
+// .cache/assets/ (compiled in, so any working directory finds it).
+std::filesystem::path downloadable_scene_file(std::string_view name);
+// Throws std::invalid_argument if unknown, aosuite::FileError if a download is missing.
+Scene builtin_scene(std::string_view name);
+// A built-in scene's views without loading its meshes (for listings).
+std::vector<View> builtin_scene_views(std::string_view name);
 
 // The view called `name`, or the view at index `name` ("0", "1"), or the first view when
 // `name` is empty; throws std::invalid_argument naming the scene's views otherwise.

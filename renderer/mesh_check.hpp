@@ -1,0 +1,17 @@
+// Structure checks for the mesh formats whose assimp 5.2 readers trust their input: a
+// truncated binary PLY crashes its reader, a truncated ASCII PLY silently repeats its last
+// face, and the OFF reader clamps out-of-range vertex indices. These walk the file's declared
+// layout (without decoding geometry) so bad files are refused before assimp sees them.
+#pragma once
+
+#include <span>
+#include <string_view>
+
+namespace aosuite::renderer {
+
+// Each throws aosuite::FileError "<name>: <reason>" (with the line for text) when `bytes` are
+// not a complete, well-formed file of that format.
+void check_ply(std::string_view name, std::span<const unsigned char> bytes);
+void check_off(std::string_view name, std::span<const unsigned char> bytes);
+
+}  // namespace aosuite::renderer

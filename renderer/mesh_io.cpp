@@ -1,0 +1,98 @@
+#include "renderer/mesh_io.hpp"
+
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <assimp/Importer.hpp>
+#include <cmath>
+
+#include "compare/image_io.hpp"
+#include "renderer/mesh_check.hpp"
+
+namespace aosuite::renderer {
+namespace {
+
+[[noreturn]] void fail(const std::filesystem::path& path, std::string_view why) {
+  throw FileError(fmt::format("{}: {}", path.string(), why));
+}
+
+std::string lower_extension(const std::filesystem::path& path) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
+}
+
+bool finite(const aiVector3D& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+// The file's normals when every one is finite and non-zero, unit length; else none.
+std::vector<glm::vec3> usable_normals(const aiMesh& m) {
+  if (!m.HasNormals()) return {};
+  std::vector<glm::vec3> normals(m.mNumVertices);
+  for (unsigned i = 0; i < m.mNumVertices; ++i) {
+    const aiVector3D& n = m.mNormals[i];
+    const float len = std::sqrt(n.x * n.x + n.y * n.y + n.z * n.z);
+    if (!(len > 0 && std::isfinite(len))) return {};
+    normals[i] = glm::vec3(n.x, n.y, n.z) / len;
+  }
+  return normals;
+}
+
+// One assimp mesh's triangles (its points and lines dropped) as a Mesh with normals.
+Mesh triangles_of(const aiMesh& m) {
+  Mesh out;
+  out.positions.reserve(m.mNumVertices);
+  for (unsigned i = 0; i < m.mNumVertices; ++i) {
+    out.positions.emplace_back(m.mVertices[i].x, m.mVertices[i].y, m.mVertices[i].z);
+  }
+  for (unsigned f = 0; f < m.mNumFaces; ++f) {
+    const aiFace& face = m.mFaces[f];
+    if (face.mNumIndices == 3) {
+      out.triangles.emplace_back(face.mIndices[0], face.mIndices[1], face.mIndices[2]);
+    }
+  }
+  out.normals = usable_normals(m);
+  if (out.normals.empty()) compute_normals(out);
+  return out;
+}
+
+}  // namespace
+
+Mesh load_mesh(const std::filesystem::path& path) {
+  const std::string ext = lower_extension(path);
+  if (ext != ".ply" && ext != ".obj" && ext != ".off") {
+    fail(path, "unsupported mesh format (expected .ply, .obj or .off)");
+  }
+  const std::vector<unsigned char> bytes = read_file(path);
+  if (ext == ".ply") check_ply(path.string(), bytes);
+  if (ext == ".off") check_off(path.string(), bytes);
+
+  // Assimp logs only through a DefaultLogger, which is never created here, so it stays quiet.
+  Assimp::Importer importer;
+  const aiScene* scene = importer.ReadFileFromMemory(
+      bytes.data(), bytes.size(), aiProcess_ValidateDataStructure, ext.c_str() + 1);
+  if (!scene) fail(path, importer.GetErrorString());
+  // Before vertices are welded, so a NaN cannot hide in a merged vertex.
+  for (unsigned i = 0; i < scene->mNumMeshes; ++i) {
+    const aiMesh& m = *scene->mMeshes[i];
+    if (!std::all_of(m.mVertices, m.mVertices + m.mNumVertices, finite)) {
+      fail(path, "a vertex position is NaN or infinite");
+    }
+  }
+  // OBJ and OFF readers give every face its own vertices; welding restores shared ones so
+  // computed normals are smooth. Node transforms (OBJ groups) are baked in.
+  scene = importer.ApplyPostProcessing(aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
+                                       aiProcess_PreTransformVertices);
+  if (!scene) fail(path, importer.GetErrorString());
+  Mesh merged;
+  for (unsigned i = 0; i < scene->mNumMeshes; ++i)
+    append_mesh(merged, triangles_of(*scene->mMeshes[i]));
+  if (merged.triangles.empty()) fail(path, "no triangles");
+  return merged;
+}
+
+}  // namespace aosuite::renderer

@@ -1,0 +1,17 @@
+// Triangle meshes from files: PLY (ASCII and binary), OBJ and OFF, read through assimp.
+#pragma once
+
+#include <filesystem>
+
+#include "renderer/scene.hpp"
+
+namespace aosuite::renderer {
+
+// Every mesh of the file merged into one, triangulated (points and lines dropped), with the
+// file's normals when it has usable ones and computed normals otherwise. Degenerate and
+// zero-area triangles are kept (compute_normals ignores them). Throws aosuite::FileError
+// "<file>: <reason>" for an unreadable, truncated or malformed file, a non-finite position,
+// an index out of range or a file without triangles.
+Mesh load_mesh(const std::filesystem::path& path);
+
+}  // namespace aosuite::renderer
