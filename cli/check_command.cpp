@@ -17,7 +17,7 @@ namespace hs = aosuite::harness;
 struct HarnessArgs {
   std::string suite, filter, shard, report, junit, tag;
   int jobs = 1;
-  bool diff_all = false, no_reuse = false, platform = false;
+  bool diff_all = false, no_reuse = false, platform = false, list = false;
 };
 
 void add_selection_options(CLI::App* cmd, HarnessArgs& a) {
@@ -80,6 +80,10 @@ int finish(const hs::RunResults& run, const fs::path& report_dir, const std::str
 int run_check(const HarnessArgs& a) {
   const hs::Suite suite = hs::load_suite(a.suite);
   hs::RunOptions o = run_options(suite, a);
+  if (a.list) {
+    for (const hs::Case* c : hs::select(suite, o.selection)) fmt::print("{}\n", c->id);
+    return kExitSame;
+  }
   o.progress = print_progress;
   acknowledge_sharding();
   const hs::RunResults run = hs::check(suite, o);
@@ -152,6 +156,7 @@ void add_check_command(CLI::App& app, int& rc) {
   add_selection_options(cmd, *a);
   cmd->add_option("--junit", a->junit, "also write JUnit XML here");
   cmd->add_flag("--diff-all", a->diff_all, "write diff images for passing cases too");
+  cmd->add_flag("--list", a->list, "print the selected case ids and stop");
   guarded(cmd, rc, "check", [a] { return run_check(*a); });
 }
 

@@ -10,26 +10,15 @@
 
 #include "compare/image_io.hpp"
 #include "png_fixture.hpp"
+#include "process.hpp"
 
 namespace aosuite {
 namespace {
 
-struct Outcome {
-  int rc;
-  std::string out, err;
-};
+using test::Outcome;
 
 Outcome run(const test::TempDir& dir, const std::string& args) {
-  const std::string err_file = (dir / "stderr.txt").string();
-  const std::string cmd = std::string(AOSUITE_BIN) + " compare " + args + " 2>" + err_file;
-  FILE* p = popen(cmd.c_str(), "r");
-  std::string out;
-  char buf[4096];
-  for (std::size_t n; (n = fread(buf, 1, sizeof buf, p)) > 0;) out.append(buf, n);
-  const int status = pclose(p);
-  std::stringstream err;
-  err << std::ifstream(err_file).rdbuf();
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out, err.str()};
+  return test::run_shell(std::string(AOSUITE_BIN) + " compare " + args, dir.path());
 }
 
 class CliCompare : public ::testing::Test {
