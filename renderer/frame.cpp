@@ -53,15 +53,11 @@ void set_camera_uniforms(GLuint program, const Camera& camera) {
 
 namespace {
 
+// The vertex shader makes the triangle from gl_VertexID; the context keeps an empty vertex
+// array bound for it (GlContext).
 void bind_fullscreen(GLuint fb, int width, int height) {
-  static const GLuint empty_vao = [] {
-    GLuint id = 0;
-    glCreateVertexArrays(1, &id);
-    return id;
-  }();
   glBindFramebuffer(GL_FRAMEBUFFER, fb);
   glViewport(0, 0, width, height);
-  glBindVertexArray(empty_vao);
 }
 
 }  // namespace

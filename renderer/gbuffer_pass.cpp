@@ -53,8 +53,13 @@ GpuScene::GpuScene(const Scene& scene) {
 
 void GpuScene::draw() const {
   if (index_count_ == 0) return;
+  // Every other pass draws with the context's attribute-less vertex array (GlContext); put
+  // it back afterwards.
+  GLint previous = 0;
+  glGetIntegerv(GL_VERTEX_ARRAY_BINDING, &previous);
   glBindVertexArray(vao_.get());
   glDrawElements(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr);
+  glBindVertexArray(static_cast<GLuint>(previous));
 }
 
 GBufferPass::GBufferPass() : program_(make_program({"gbuffer.vert", "gbuffer.frag"})) {}

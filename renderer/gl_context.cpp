@@ -31,6 +31,7 @@ class OsMesaContext final : public GlContext {
       OSMesaDestroyContext(ctx_);
       throw std::runtime_error("OSMesa: cannot make the context current");
     }
+    bind_empty_vertex_array();
   }
   ~OsMesaContext() override { OSMesaDestroyContext(ctx_); }
 
@@ -45,6 +46,12 @@ class OsMesaContext final : public GlContext {
 };
 
 }  // namespace
+
+void GlContext::bind_empty_vertex_array() {
+  GLuint id = 0;
+  glCreateVertexArrays(1, &id);
+  glBindVertexArray(id);
+}
 
 std::unique_ptr<GlContext> make_osmesa_context() { return std::make_unique<OsMesaContext>(); }
 

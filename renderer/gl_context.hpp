@@ -12,6 +12,11 @@ class GlContext {
   virtual ~GlContext() = default;
   // "vendor | renderer | version", for golden variants keyed by driver.
   virtual std::string description() const = 0;
+
+ protected:
+  // Core profile draws nothing without a vertex array, and vertex arrays are not shared
+  // between contexts: each context binds its own empty one once, for the full-screen passes.
+  static void bind_empty_vertex_array();
 };
 
 // An offscreen OpenGL 4.5 core context from Mesa (llvmpipe: no GPU or display needed).

@@ -18,6 +18,13 @@ layout(location = 0) out float o_ao;
 const int kLogMaxOffset = 3;
 uniform int u_max_level;  // MAX_MIP_LEVEL = 5, fewer for tiny images
 
+// The full-resolution pixel whose depth sao_minify.frag kept for texel q of level m (it keeps
+// texel 2q + (q.y & 1, q.x & 1) of the level below).
+ivec2 pyramid_source(ivec2 q, int m) {
+  for (int i = 0; i < m; ++i) q = q * 2 + ivec2(q.y & 1, q.x & 1);
+  return q;
+}
+
 vec3 position_at(ivec2 q, vec2 size) {
   float z = texelFetch(u_depth, q, 0).r;
   return z > 0.0 ? view_position(vec2(q) + 0.5, size, z) : vec3(0.0);
@@ -58,7 +65,12 @@ void main() {
     ivec2 qm = clamp(q >> m, ivec2(0), textureSize(u_depth, m) - 1);
     float zq = texelFetch(u_depth, qm, m).r;
     if (zq <= 0.0) continue;
-    vec3 v = view_position(vec2(clamp(q, ivec2(0), ivec2(size) - 1)) + 0.5, size, zq) - c;
+    // The reference unprojects zq at the tap's own pixel, but zq belongs to a pixel up to 2^m
+    // away: on a steep depth gradient (a ground plane seen at grazing angles) that lifts the
+    // point off the surface and draws dark streaks. Unprojecting at the pixel zq came from
+    // keeps every tap on a real surface.
+    ivec2 src = min(pyramid_source(qm, m), ivec2(size) - 1);
+    vec3 v = view_position(vec2(src) + 0.5, size, zq) - c;
     float vv = dot(v, v);
     float f = max(r2 - vv, 0.0);
     sum += f * f * f * max((dot(v, n) - u_bias) / (vv + 0.01 * r2), 0.0);
