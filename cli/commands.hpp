@@ -12,6 +12,7 @@ inline constexpr int kExitError = 2;
 
 void add_compare_command(CLI::App& app, int& rc);
 void add_render_command(CLI::App& app, int& rc);  // in libaosuite_gl.so
+void add_scenes_command(CLI::App& app, int& rc);  // in libaosuite_gl.so
 void add_check_command(CLI::App& app, int& rc);   // in libaosuite_gl.so
 void add_bless_command(CLI::App& app, int& rc);   // in libaosuite_gl.so
 void add_report_command(CLI::App& app, int& rc);  // in libaosuite_gl.so

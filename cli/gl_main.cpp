@@ -8,6 +8,7 @@ extern "C" int aosuite_gl_main(int argc, char** argv) {
   app.require_subcommand(1);
   int rc = aosuite::cli::kExitSame;
   aosuite::cli::add_render_command(app, rc);
+  aosuite::cli::add_scenes_command(app, rc);
   aosuite::cli::add_check_command(app, rc);
   aosuite::cli::add_bless_command(app, rc);
   aosuite::cli::add_report_command(app, rc);

@@ -20,6 +20,7 @@ struct GlCommand {
 };
 constexpr std::array kGlCommands{
     GlCommand{"render", "Render a scene view with one AO technique"},
+    GlCommand{"scenes", "List built-in scenes and their views, or check scene files"},
     GlCommand{"check", "Render a suite and gate each case against its golden (see check --help)"},
     GlCommand{"bless", "Accept current renders of a suite as its goldens"},
     GlCommand{"report", "Merge shard reports (report merge --out DIR SHARD...)"},

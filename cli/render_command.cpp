@@ -12,6 +12,7 @@
 #include "compare/image_io.hpp"
 #include "renderer/renderer.hpp"
 #include "renderer/scene.hpp"
+#include "renderer/scene_file.hpp"
 
 namespace aosuite::cli {
 namespace {
@@ -20,12 +21,11 @@ namespace fs = std::filesystem;
 namespace rd = aosuite::renderer;
 
 struct RenderArgs {
-  std::string scene = "village", view, technique = "alchemy", out = "reports/render", blur,
+  std::string scene = "village", view, technique = "alchemy", out = "reports/render",
               outputs = "all";
   int width = 1920, height = 1080, runs = 1;
-  std::optional<int> samples;
-  std::optional<float> radius, bias, intensity, contrast;
-  std::vector<float> level_weights;
+  std::optional<std::string> samples, radius;
+  std::vector<std::string> params;  // key=value
 };
 
 void write_exr(const fs::path& path, const cv::Mat& ao) {
@@ -46,21 +46,20 @@ double median(std::vector<double> v) {
 }
 
 int run_render(const RenderArgs& a) {
-  rd::Scene scene = rd::builtin_scene(a.scene);
+  rd::Scene scene = rd::load_scene(a.scene);
   const rd::View& view = rd::find_view(scene, a.view);
   rd::RenderSettings s;
   s.width = a.width, s.height = a.height;
   s.technique = rd::parse_technique(a.technique);
   s.params = rd::default_params(s.technique);
-  if (a.samples) s.params.samples = *a.samples;
-  if (a.radius) s.params.radius = *a.radius;
-  if (a.bias) s.params.bias = *a.bias;
-  if (a.intensity) s.params.intensity = *a.intensity;
-  if (a.contrast) s.params.contrast = *a.contrast;
-  if (!a.blur.empty()) s.params.blur = rd::parse_blur(a.blur);
-  if (!a.level_weights.empty()) {
-    if (a.level_weights.size() != 5) throw std::invalid_argument("--level-weights needs 5 values");
-    std::copy(a.level_weights.begin(), a.level_weights.end(), s.params.level_weights.begin());
+  if (a.samples) rd::set_param(s.params, "samples", *a.samples);
+  if (a.radius) rd::set_param(s.params, "radius", *a.radius);
+  for (const std::string& kv : a.params) {
+    const std::size_t eq = kv.find('=');
+    if (eq == std::string::npos) {
+      throw std::invalid_argument(fmt::format("--param '{}': expected KEY=VALUE", kv));
+    }
+    rd::set_param(s.params, kv.substr(0, eq), kv.substr(eq + 1));
   }
   s.outputs = rd::parse_outputs(a.outputs);
 
@@ -105,13 +104,58 @@ int run_render(const RenderArgs& a) {
   return kExitSame;
 }
 
+void print_views(const std::vector<rd::View>& views) {
+  for (const rd::View& v : views) {
+    fmt::print("  {:<12} eye ({:g}, {:g}, {:g}) -> ({:g}, {:g}, {:g}), fovy {:g}\n", v.name,
+               v.eye.x, v.eye.y, v.eye.z, v.target.x, v.target.y, v.target.z, v.fovy_degrees);
+  }
+}
+
+int run_scenes(const std::vector<std::string>& files) {
+  if (!files.empty()) {
+    for (const std::string& f : files) {
+      const rd::Scene scene = rd::load_scene(f);
+      std::size_t triangles = 0;
+      for (const rd::Mesh& m : scene.meshes) triangles += m.triangles.size();
+      fmt::print("{}: {} meshes, {} triangles\n", f, scene.meshes.size(), triangles);
+      print_views(scene.views);
+    }
+    return kExitSame;
+  }
+  for (const std::string& name : rd::builtin_scene_names()) {
+    fmt::print("{}\n", name);
+    print_views(rd::builtin_scene_views(name));
+  }
+  for (const std::string& name : rd::downloadable_scene_names()) {
+    const fs::path file = rd::downloadable_scene_file(name);
+    fmt::print("{} ({})\n", name,
+               fs::exists(file) ? file.string() : "not fetched: run scripts/fetch_dragon.sh");
+    print_views(rd::builtin_scene_views(name));
+  }
+  return kExitSame;
+}
+
 }  // namespace
+
+void add_scenes_command(CLI::App& app, int& rc) {
+  auto files = std::make_shared<std::vector<std::string>>();
+  CLI::App* cmd = app.add_subcommand("scenes", "List built-in scenes and their views");
+  cmd->add_option("files", *files, "scene files (.toml) to check and list instead");
+  cmd->callback([files, &rc] {
+    try {
+      rc = run_scenes(*files);
+    } catch (const std::exception& e) {
+      fmt::print(stderr, "aosuite scenes: {}\n", e.what());
+      rc = kExitError;
+    }
+  });
+}
 
 void add_render_command(CLI::App& app, int& rc) {
   auto a = std::make_shared<RenderArgs>();
   CLI::App* cmd = app.add_subcommand("render", "Render a scene view with one AO technique");
   cmd->add_option("--scene", a->scene,
-                  fmt::format("built-in scene: {}", fmt::join(rd::builtin_scene_names(), ", ")))
+                  "built-in scene name or scene file (.toml); `aosuite scenes` lists them")
       ->capture_default_str();
   cmd->add_option("--view", a->view, "view name or index (default: the first)");
   cmd->add_option("--technique", a->technique, "alchemy|sao|mssao|ue4")->capture_default_str();
@@ -119,12 +163,10 @@ void add_render_command(CLI::App& app, int& rc) {
   cmd->add_option("--height", a->height)->capture_default_str();
   cmd->add_option("--samples", a->samples, "samples per pixel (default: the technique's)");
   cmd->add_option("--radius", a->radius, "radius in scene units");
-  cmd->add_option("--bias", a->bias);
-  cmd->add_option("--intensity", a->intensity);
-  cmd->add_option("--contrast", a->contrast, "Alchemy's k, UE4's power");
-  cmd->add_option("--blur", a->blur, "none|gaussian|bilateral (default bilateral)");
-  cmd->add_option("--level-weights", a->level_weights, "MSSAO: five level intensities")
-      ->delimiter(',');
+  cmd->add_option("--param", a->params,
+                  fmt::format("KEY=VALUE, repeatable; keys: {} (blur: none|gaussian|bilateral; "
+                              "level_weights: five comma-separated MSSAO intensities)",
+                              fmt::join(rd::param_names(), ", ")));
   cmd->add_option("--outputs", a->outputs, "all, or a list of no_ao,with_ao,ao_only,ao_float")
       ->capture_default_str();
   cmd->add_option("--runs", a->runs, "timed runs after one warm-up (median reported)")

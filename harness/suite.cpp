@@ -7,6 +7,8 @@
 #include <set>
 #include <stdexcept>
 
+#include "renderer/scene_file.hpp"
+
 namespace aosuite::harness {
 namespace {
 
@@ -227,8 +229,9 @@ Suite load_suite(const fs::path& file) {
     auto& scene = scenes[source];
     if (!scene) {
       try {
-        if (source.ends_with(".toml")) throw std::invalid_argument("TODO scene files");
-        scene = std::make_shared<const renderer::Scene>(renderer::builtin_scene(source));
+        const bool is_file = source.ends_with(".toml");
+        scene = std::make_shared<const renderer::Scene>(
+            renderer::load_scene(is_file ? (dir / source).string() : source));
       } catch (const std::exception& e) {
         r.fail(scene_node->source(), e.what());
       }

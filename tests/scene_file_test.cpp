@@ -355,8 +355,9 @@ TEST_F(SceneFiles, UnreadableMeshesNameBothFiles) {
   const std::string e = error("[[meshes]]\nfile = \"missing.obj\"\n" + std::string(kView), 2);
   EXPECT_NE(e.find("missing.obj"), std::string::npos) << e;
   write(dir_ / "lines.obj", "v 0 0 0\nv 1 0 0\nl 1 2\n");
-  EXPECT_NE(error("[[meshes]]\nfile = \"lines.obj\"\n" + std::string(kView), 2).find("no triangles"),
-            std::string::npos);
+  EXPECT_NE(
+      error("[[meshes]]\nfile = \"lines.obj\"\n" + std::string(kView), 2).find("no triangles"),
+      std::string::npos);
 }
 
 TEST(BuiltinScenes, NamesFilesAndTheDragon) {
