@@ -9,12 +9,14 @@ namespace aosuite::renderer {
 class BlurPass {
  public:
   BlurPass();
-  // Blurs `ao` in place, using `scratch` (same size, R32F) between the two axes.
+  // Blurs `ao` (R32F or wider) in place, using `scratch` (same size, RG32F) between the two
+  // axes.
   PassTime run(const GBuffer& g, Blur blur, GLuint ao, GLuint ao_fb, GLuint scratch,
                GLuint scratch_fb) const;
 
  private:
-  Program program_;
+  Program first_axis_;   // reads AO and the G-buffer's depth, writes (AO, depth) pairs
+  Program second_axis_;  // reads the pairs
 };
 
 }  // namespace aosuite::renderer

@@ -69,8 +69,8 @@ void draw_fullscreen(GLuint fb, int width, int height) {
 }
 
 void draw_geometry_pixels(GLuint fb, int width, int height) {
-  const float one = 1;
-  glClearNamedFramebufferfv(fb, GL_COLOR, 0, &one);
+  const float sky[4] = {1, 0, 0, 1};  // AO 1 (and depth 0 where a target keeps depth)
+  glClearNamedFramebufferfv(fb, GL_COLOR, 0, sky);
   bind_fullscreen(fb, width, height);
   glEnable(GL_DEPTH_TEST);
   glDepthMask(GL_FALSE);

@@ -48,7 +48,7 @@ struct Renderer::State {
     width = w, height = h;
     gbuffer = make_gbuffer(w, h);
     ao = make_texture(GL_R32F, w, h);
-    scratch = make_texture(GL_R32F, w, h);
+    scratch = make_texture(GL_RG32F, w, h);  // the blur's (AO, depth) pairs
     no_ao = make_texture(GL_RGBA8, w, h);
     with_ao = make_texture(GL_RGBA8, w, h);
     ao_only = make_texture(GL_RGBA8, w, h);
