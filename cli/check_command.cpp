@@ -133,18 +133,6 @@ int run_merge(const std::string& out, const std::vector<std::string>& shards,
   return finish(merged, out, junit);
 }
 
-template <typename F>
-void guarded(CLI::App* cmd, int& rc, const char* name, F f) {
-  cmd->callback([&rc, name, f] {
-    try {
-      rc = f();
-    } catch (const std::exception& e) {
-      fmt::print(stderr, "aosuite {}: {}\n", name, e.what());
-      rc = kExitError;
-    }
-  });
-}
-
 }  // namespace
 
 void add_check_command(CLI::App& app, int& rc) {

@@ -2,6 +2,8 @@
 // Exit codes, for every subcommand: 0 same / passed, 1 different / failed, 2 error.
 #pragma once
 
+#include <fmt/format.h>
+
 #include <CLI/CLI.hpp>
 
 namespace aosuite::cli {
@@ -10,11 +12,29 @@ inline constexpr int kExitSame = 0;
 inline constexpr int kExitDifferent = 1;
 inline constexpr int kExitError = 2;
 
+// Runs `f` as `cmd`'s action: its return value is the exit code, and any exception becomes
+// "aosuite <name>: <reason>" on stderr and exit code 2.
+template <typename F>
+void guarded(CLI::App* cmd, int& rc, const char* name, F f) {
+  cmd->callback([&rc, name, f] {
+    try {
+      rc = f();
+    } catch (const std::exception& e) {
+      fmt::print(stderr, "aosuite {}: {}\n", name, e.what());
+      rc = kExitError;
+    }
+  });
+}
+
 void add_compare_command(CLI::App& app, int& rc);
-void add_render_command(CLI::App& app, int& rc);  // in libaosuite_gl.so
-void add_scenes_command(CLI::App& app, int& rc);  // in libaosuite_gl.so
-void add_check_command(CLI::App& app, int& rc);   // in libaosuite_gl.so
-void add_bless_command(CLI::App& app, int& rc);   // in libaosuite_gl.so
-void add_report_command(CLI::App& app, int& rc);  // in libaosuite_gl.so
+void add_render_command(CLI::App& app, int& rc);      // in libaosuite_gl.so
+void add_scenes_command(CLI::App& app, int& rc);      // in libaosuite_gl.so
+void add_check_command(CLI::App& app, int& rc);       // in libaosuite_gl.so
+void add_bless_command(CLI::App& app, int& rc);       // in libaosuite_gl.so
+void add_report_command(CLI::App& app, int& rc);      // in libaosuite_gl.so
+void add_viewpoints_command(CLI::App& app, int& rc);  // in libaosuite_gl.so
+void add_pmi_study_command(CLI::App& app, int& rc);   // in libaosuite_gl.so
+void add_error_command(CLI::App& app, int& rc);       // in libaosuite_gl.so
+void add_sweep_command(CLI::App& app, int& rc);       // in libaosuite_gl.so
 
 }  // namespace aosuite::cli

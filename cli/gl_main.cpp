@@ -12,6 +12,10 @@ extern "C" int aosuite_gl_main(int argc, char** argv) {
   aosuite::cli::add_check_command(app, rc);
   aosuite::cli::add_bless_command(app, rc);
   aosuite::cli::add_report_command(app, rc);
+  aosuite::cli::add_viewpoints_command(app, rc);
+  aosuite::cli::add_pmi_study_command(app, rc);
+  aosuite::cli::add_error_command(app, rc);
+  aosuite::cli::add_sweep_command(app, rc);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

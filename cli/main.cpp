@@ -24,6 +24,11 @@ constexpr std::array kGlCommands{
     GlCommand{"check", "Render a suite and gate each case against its golden (see check --help)"},
     GlCommand{"bless", "Accept current renders of a suite as its goldens"},
     GlCommand{"report", "Merge shard reports (report merge --out DIR SHARD...)"},
+    GlCommand{"viewpoints", "PMI viewpoint selection: best/worst views, VMI and PMI(v) per view"},
+    GlCommand{"pmi-study", "PMI resolution x viewpoints study: time, agreement with ray tracing"},
+    GlCommand{"error", "Measure a technique's AO against a ray-traced reference"},
+    GlCommand{"sweep",
+              "Time and error of each technique over a samples x radius x resolution grid"},
 };
 
 bool is_gl_command(const char* name) {

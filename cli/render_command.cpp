@@ -1,6 +1,5 @@
 // `aosuite render`: one scene view through one technique; writes the no-AO, with-AO and
 // AO-only PNGs, the AO term as float EXR, and a JSON of parameters and per-pass times.
-#include <OpenImageIO/imageio.h>
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
@@ -9,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.hpp"
+#include "cli/gl_command_util.hpp"
 #include "compare/image_io.hpp"
 #include "renderer/renderer.hpp"
 #include "renderer/scene.hpp"
@@ -28,39 +28,13 @@ struct RenderArgs {
   std::vector<std::string> params;  // key=value
 };
 
-void write_exr(const fs::path& path, const cv::Mat& ao) {
-  const fs::path tmp = path.parent_path() / ("." + path.filename().string() + ".tmp.exr");
-  auto out = OIIO::ImageOutput::create(tmp.string());
-  const OIIO::ImageSpec spec(ao.cols, ao.rows, 1, OIIO::TypeDesc::FLOAT);
-  if (!out || !out->open(tmp.string(), spec) || !out->write_image(OIIO::TypeDesc::FLOAT, ao.data) ||
-      !out->close()) {
-    throw FileError(fmt::format("{}: cannot write EXR: {}", path.string(), OIIO::geterror()));
-  }
-  fs::rename(tmp, path);
-}
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
 int run_render(const RenderArgs& a) {
   rd::Scene scene = rd::load_scene(a.scene);
   const rd::View& view = rd::find_view(scene, a.view);
   rd::RenderSettings s;
   s.width = a.width, s.height = a.height;
   s.technique = rd::parse_technique(a.technique);
-  s.params = rd::default_params(s.technique);
-  if (a.samples) rd::set_param(s.params, "samples", *a.samples);
-  if (a.radius) rd::set_param(s.params, "radius", *a.radius);
-  for (const std::string& kv : a.params) {
-    const std::size_t eq = kv.find('=');
-    if (eq == std::string::npos) {
-      throw std::invalid_argument(fmt::format("--param '{}': expected KEY=VALUE", kv));
-    }
-    rd::set_param(s.params, kv.substr(0, eq), kv.substr(eq + 1));
-  }
+  s.params = technique_params(s.technique, a.samples, a.radius, a.params);
   s.outputs = rd::parse_outputs(a.outputs);
 
   rd::Renderer renderer;
@@ -92,6 +66,11 @@ int run_render(const RenderArgs& a) {
                  {"contrast", s.params.contrast},
                  {"blur", rd::blur_name(s.params.blur)},
                  {"level_weights", s.params.level_weights}};
+  if (s.technique == rd::Technique::kPmi) {
+    j["params"]["viewpoints"] = s.params.viewpoints;
+    j["params"]["pmi_resolution"] = s.params.pmi_resolution;
+    j["params"]["importance_best"] = s.params.importance_best;
+  }
   j["gl"] = renderer.gl_description();
   j["runs"] = a.runs;
   for (const auto& [pass, times] : gpu) {
@@ -141,14 +120,7 @@ void add_scenes_command(CLI::App& app, int& rc) {
   auto files = std::make_shared<std::vector<std::string>>();
   CLI::App* cmd = app.add_subcommand("scenes", "List built-in scenes and their views");
   cmd->add_option("files", *files, "scene files (.toml) to check and list instead");
-  cmd->callback([files, &rc] {
-    try {
-      rc = run_scenes(*files);
-    } catch (const std::exception& e) {
-      fmt::print(stderr, "aosuite scenes: {}\n", e.what());
-      rc = kExitError;
-    }
-  });
+  guarded(cmd, rc, "scenes", [files] { return run_scenes(*files); });
 }
 
 void add_render_command(CLI::App& app, int& rc) {
@@ -158,7 +130,7 @@ void add_render_command(CLI::App& app, int& rc) {
                   "built-in scene name or scene file (.toml); `aosuite scenes` lists them")
       ->capture_default_str();
   cmd->add_option("--view", a->view, "view name or index (default: the first)");
-  cmd->add_option("--technique", a->technique, "alchemy|sao|mssao|ue4")->capture_default_str();
+  cmd->add_option("--technique", a->technique, "alchemy|sao|mssao|ue4|pmi")->capture_default_str();
   cmd->add_option("--width", a->width)->capture_default_str();
   cmd->add_option("--height", a->height)->capture_default_str();
   cmd->add_option("--samples", a->samples, "samples per pixel (default: the technique's)");
@@ -172,14 +144,7 @@ void add_render_command(CLI::App& app, int& rc) {
   cmd->add_option("--runs", a->runs, "timed runs after one warm-up (median reported)")
       ->capture_default_str();
   cmd->add_option("--out", a->out, "output directory")->capture_default_str();
-  cmd->callback([a, &rc] {
-    try {
-      rc = run_render(*a);
-    } catch (const std::exception& e) {
-      fmt::print(stderr, "aosuite render: {}\n", e.what());
-      rc = kExitError;
-    }
-  });
+  guarded(cmd, rc, "render", [a] { return run_render(*a); });
 }
 
 }  // namespace aosuite::cli

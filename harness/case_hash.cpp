@@ -64,7 +64,8 @@ std::string input_hash(const Case& c, const std::string& gl_description) {
     h.add(std::span(m.positions))
         .add(std::span(m.normals))
         .add(std::span(m.triangles))
-        .add(m.colour);
+        .add(m.colour)
+        .add(m.ground);
   }
   for (const renderer::View& v : c.scene->views) {
     h.add(v.name).add(v.eye).add(v.target).add(v.up).add(v.fovy_degrees).add(v.near);
@@ -73,6 +74,7 @@ std::string input_hash(const Case& c, const std::string& gl_description) {
   h.add(c.view).add(c.technique).add(c.width).add(c.height);
   h.add(p.samples).add(p.radius).add(p.bias).add(p.intensity).add(p.contrast).add(p.blur);
   h.add(p.level_weights);
+  h.add(p.viewpoints).add(p.pmi_resolution).add(p.importance_best);
   return h.hex();
 }
 

@@ -148,6 +148,11 @@ CaseResult skeleton(const Case& c) {
               {"contrast", fmt::format("{}", p.contrast)},
               {"blur", std::string(rd::blur_name(p.blur))},
               {"level_weights", fmt::format("{}", fmt::join(p.level_weights, ","))}};
+  if (c.technique == rd::Technique::kPmi) {
+    r.params["viewpoints"] = std::to_string(p.viewpoints);
+    r.params["pmi_resolution"] = std::to_string(p.pmi_resolution);
+    r.params["importance_best"] = std::to_string(p.importance_best);
+  }
   r.files = {{"no_ao", c.id + "/no_ao.png"},
              {"with_ao", c.id + "/with_ao.png"},
              {"ao_only", c.id + "/ao_only.png"}};

@@ -8,73 +8,14 @@
 #include <stdexcept>
 
 #include "renderer/scene_file.hpp"
+#include "renderer/toml_reader.hpp"
 
 namespace aosuite::harness {
 namespace {
 
 namespace fs = std::filesystem;
 
-// Every error names the suite file and the place in it.
-class Reader {
- public:
-  explicit Reader(fs::path file) : file_(std::move(file)) {}
-  const fs::path& file() const { return file_; }
-
-  [[noreturn]] void fail(const toml::source_region& at, const std::string& why) const {
-    throw std::runtime_error(
-        fmt::format("{}:{}:{}: {}", file_.string(), at.begin.line, at.begin.column, why));
-  }
-
-  void only_keys(const toml::table& t, std::initializer_list<std::string_view> known) const {
-    for (const auto& [key, node] : t) {
-      if (std::find(known.begin(), known.end(), key.str()) == known.end()) {
-        std::string list;
-        for (std::string_view k : known) list += (list.empty() ? "" : ", ") + std::string(k);
-        fail(key.source(), fmt::format("unknown key '{}' (expected one of: {})", key.str(), list));
-      }
-    }
-  }
-
-  template <typename T>
-  T get(const toml::node& n, const char* what) const {
-    if (auto v = n.value_exact<T>()) return *v;
-    if constexpr (std::is_same_v<T, double>) {
-      if (auto i = n.value_exact<std::int64_t>()) return static_cast<double>(*i);
-    }
-    fail(n.source(), fmt::format("{} must be {}", what, type_name<T>()));
-  }
-
-  int get_int(const toml::node& n, const char* what, std::int64_t lo, std::int64_t hi) const {
-    const auto v = get<std::int64_t>(n, what);
-    if (v < lo || v > hi)
-      fail(n.source(), fmt::format("{} must be {}..{}, not {}", what, lo, hi, v));
-    return static_cast<int>(v);
-  }
-
-  std::vector<std::string> strings(const toml::node& n, const char* what) const {
-    const toml::array* a = n.as_array();
-    if (!a) fail(n.source(), fmt::format("{} must be an array of strings", what));
-    std::vector<std::string> out;
-    for (const toml::node& e : *a) out.push_back(get<std::string>(e, what));
-    if (out.empty()) fail(n.source(), fmt::format("{} must not be empty", what));
-    return out;
-  }
-
-  const toml::table& table(const toml::node& n, const char* what) const {
-    if (const toml::table* t = n.as_table()) return *t;
-    fail(n.source(), fmt::format("{} must be a table", what));
-  }
-
- private:
-  template <typename T>
-  static const char* type_name() {
-    if constexpr (std::is_same_v<T, std::string>) return "a string";
-    if constexpr (std::is_same_v<T, std::int64_t>) return "an integer";
-    if constexpr (std::is_same_v<T, double>) return "a number";
-    return "a boolean";
-  }
-  fs::path file_;
-};
+using Reader = TomlReader;
 
 // A parameter as renderer::set_param takes it: text; arrays become comma-separated lists.
 std::string param_text(const Reader& r, const toml::node& n) {
@@ -105,19 +46,19 @@ void read_tolerance(const Reader& r, const fs::path& dir, const toml::node& n, T
   r.only_keys(tbl, {"mode", "max_mismatch_percent", "max_channel_delta", "ignore", "mask"});
   if (const toml::node* m = tbl.get("mode")) {
     try {
-      t.mode = resemble::parse_mode(r.get<std::string>(*m, "mode"));
+      t.mode = resemble::parse_mode(r.string(*m, "mode"));
     } catch (const std::invalid_argument& e) {
       r.fail(m->source(), e.what());
     }
   }
   if (const toml::node* m = tbl.get("max_mismatch_percent")) {
-    t.max_mismatch_percent = r.get<double>(*m, "max_mismatch_percent");
+    t.max_mismatch_percent = r.number(*m, "max_mismatch_percent");
     if (!(t.max_mismatch_percent >= 0 && t.max_mismatch_percent <= 100)) {
       r.fail(m->source(), "max_mismatch_percent must be 0..100");
     }
   }
   if (const toml::node* m = tbl.get("max_channel_delta")) {
-    t.max_channel_delta = r.get_int(*m, "max_channel_delta", 0, 255);
+    t.max_channel_delta = r.integer(*m, "max_channel_delta", 0, 255);
   }
   if (const toml::node* m = tbl.get("ignore")) {
     t.ignore.clear();
@@ -127,17 +68,17 @@ void read_tolerance(const Reader& r, const fs::path& dir, const toml::node& n, T
       const toml::array* box = b.as_array();
       if (!box || box->size() != 4) r.fail(b.source(), "a box is [left, top, right, bottom]");
       resemble::Box out;
-      out.left = r.get_int((*box)[0], "left", 0, 1 << 20);
-      out.top = r.get_int((*box)[1], "top", 0, 1 << 20);
-      out.right = r.get_int((*box)[2], "right", 0, 1 << 20);
-      out.bottom = r.get_int((*box)[3], "bottom", 0, 1 << 20);
+      out.left = r.integer((*box)[0], "left", 0, 1 << 20);
+      out.top = r.integer((*box)[1], "top", 0, 1 << 20);
+      out.right = r.integer((*box)[2], "right", 0, 1 << 20);
+      out.bottom = r.integer((*box)[3], "bottom", 0, 1 << 20);
       if (out.right < out.left || out.bottom < out.top)
         r.fail(b.source(), "box has right < left or bottom < top");
       t.ignore.push_back(out);
     }
   }
   if (const toml::node* m = tbl.get("mask")) {
-    t.mask = dir / r.get<std::string>(*m, "mask");
+    t.mask = dir / r.string(*m, "mask");
     if (!fs::is_regular_file(t.mask)) r.fail(m->source(), "no mask image " + t.mask.string());
   }
 }
@@ -153,8 +94,8 @@ struct Common {
 };
 
 void read_common(const Reader& r, const fs::path& dir, const toml::table& t, Common& c) {
-  if (const toml::node* n = t.get("width")) c.width = r.get_int(*n, "width", 1, 16384);
-  if (const toml::node* n = t.get("height")) c.height = r.get_int(*n, "height", 1, 16384);
+  if (const toml::node* n = t.get("width")) c.width = r.integer(*n, "width", 1, 16384);
+  if (const toml::node* n = t.get("height")) c.height = r.integer(*n, "height", 1, 16384);
   if (const toml::node* n = t.get("techniques")) {
     c.techniques = r.strings(*n, "techniques");
     for (const std::string& name : c.techniques) {
@@ -201,11 +142,10 @@ Suite load_suite(const fs::path& file) {
   Suite suite;
   suite.file = file;
   suite.name = file.stem().string();
-  if (const toml::node* n = root.get("name")) suite.name = r.get<std::string>(*n, "name");
+  if (const toml::node* n = root.get("name")) suite.name = r.string(*n, "name");
   if (!valid_id(suite.name)) r.fail(root.source(), "suite name must be letters, digits, - _ .");
   suite.goldens = dir / ".." / "goldens" / suite.name;
-  if (const toml::node* n = root.get("goldens"))
-    suite.goldens = dir / r.get<std::string>(*n, "goldens");
+  if (const toml::node* n = root.get("goldens")) suite.goldens = dir / r.string(*n, "goldens");
   suite.goldens = suite.goldens.lexically_normal();
 
   Common defaults;
@@ -225,7 +165,7 @@ Suite load_suite(const fs::path& file) {
                     "tolerance"});
     const toml::node* scene_node = t.get("scene");
     if (!scene_node) r.fail(t.source(), "a case needs scene = \"<built-in name or file.toml>\"");
-    const std::string source = r.get<std::string>(*scene_node, "scene");
+    const std::string source = r.string(*scene_node, "scene");
     auto& scene = scenes[source];
     if (!scene) {
       try {
@@ -252,7 +192,7 @@ Suite load_suite(const fs::path& file) {
       for (const renderer::View& v : scene->views) views.push_back(v.name);
     }
     std::string suffix;
-    if (const toml::node* n = t.get("name")) suffix = "-" + r.get<std::string>(*n, "name");
+    if (const toml::node* n = t.get("name")) suffix = "-" + r.string(*n, "name");
 
     for (const std::string& view : views) {
       for (const std::string& technique : c.techniques) {

@@ -42,6 +42,8 @@ std::unique_ptr<AoPass> make_ao_pass(Technique technique) {
       return std::make_unique<GBufferAoPass>("ue4.frag");
     case Technique::kMssao:
       return make_mssao_pass();
+    case Technique::kPmi:  // object space: the Renderer runs PmiPass over the scene instead
+      break;
   }
   throw std::invalid_argument("unknown technique");
 }

@@ -20,6 +20,14 @@ struct Camera {
 // near plane to any distance (near/far ratios of 1e-4 to 1e6 in the stress tests).
 Camera make_camera(const View& view, int width, int height);
 
+// The view-space position of image pixel (x, row) (top row first, as Images stores them) at
+// linear depth z: common.glsl's view_position for the same pixel centre, for CPU-side passes.
+inline glm::vec3 view_position(const Camera& c, int x, int row, float z) {
+  const glm::vec2 centre{static_cast<float>(x) + 0.5f, static_cast<float>(c.height - row) - 0.5f};
+  const glm::vec2 ndc = centre / glm::vec2(c.width, c.height) * 2.0f - 1.0f;
+  return {ndc * c.ndc_to_view * z, -z};
+}
+
 struct GBuffer {
   int width = 0, height = 0;
   Texture depth;    // R32F linear view depth; 0 = background

@@ -6,7 +6,9 @@
 
 namespace aosuite::renderer {
 
-GpuScene::GpuScene(const Scene& scene) {
+namespace {
+
+IndexedMesh upload(const Scene& scene) {
   struct Vertex {
     glm::vec3 position, normal, colour;
   };
@@ -27,40 +29,14 @@ GpuScene::GpuScene(const Scene& scene) {
       indices.insert(indices.end(), {base + t.x, base + t.y, base + t.z});
     }
   }
-  index_count_ = static_cast<GLsizei>(indices.size());
-  GLuint ids[2] = {0, 0};
-  glCreateBuffers(2, ids);
-  vertices_ = Buffer(ids[0]);
-  indices_ = Buffer(ids[1]);
-  glNamedBufferStorage(
-      ids[0], static_cast<GLsizeiptr>(std::max<std::size_t>(1, vertices.size()) * sizeof(Vertex)),
-      vertices.empty() ? nullptr : vertices.data(), 0);
-  glNamedBufferStorage(
-      ids[1], static_cast<GLsizeiptr>(std::max<std::size_t>(1, indices.size()) * sizeof(GLuint)),
-      indices.empty() ? nullptr : indices.data(), 0);
-  GLuint vao = 0;
-  glCreateVertexArrays(1, &vao);
-  vao_ = VertexArray(vao);
-  glVertexArrayVertexBuffer(vao, 0, ids[0], 0, sizeof(Vertex));
-  glVertexArrayElementBuffer(vao, ids[1]);
-  for (GLuint a = 0; a < 3; ++a) {
-    glEnableVertexArrayAttrib(vao, a);
-    glVertexArrayAttribFormat(vao, a, 3, GL_FLOAT, GL_FALSE, a * sizeof(glm::vec3));
-    glVertexArrayAttribBinding(vao, a, 0);
-  }
-  check_gl("GpuScene upload");
+  static_assert(sizeof(Vertex) == 9 * sizeof(float));
+  return IndexedMesh({reinterpret_cast<const float*>(vertices.data()), vertices.size() * 9},
+                     {3, 3, 3}, indices);
 }
 
-void GpuScene::draw() const {
-  if (index_count_ == 0) return;
-  // Every other pass draws with the context's attribute-less vertex array (GlContext); put
-  // it back afterwards.
-  GLint previous = 0;
-  glGetIntegerv(GL_VERTEX_ARRAY_BINDING, &previous);
-  glBindVertexArray(vao_.get());
-  glDrawElements(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr);
-  glBindVertexArray(static_cast<GLuint>(previous));
-}
+}  // namespace
+
+GpuScene::GpuScene(const Scene& scene) : mesh_(upload(scene)) {}
 
 GBufferPass::GBufferPass() : program_(make_program({"gbuffer.vert", "gbuffer.frag"})) {}
 

@@ -9,13 +9,11 @@ namespace aosuite::renderer {
 class GpuScene {
  public:
   explicit GpuScene(const Scene& scene);
-  void draw() const;
-  bool empty() const { return index_count_ == 0; }
+  void draw() const { mesh_.draw(); }
+  bool empty() const { return mesh_.empty(); }
 
  private:
-  VertexArray vao_;
-  Buffer vertices_, indices_;
-  GLsizei index_count_ = 0;
+  IndexedMesh mesh_;
 };
 
 class GBufferPass {

@@ -1,5 +1,6 @@
 #include "renderer/gl_objects.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 #include <string_view>
 #include <vector>
@@ -20,6 +21,47 @@ void check_gl(const char* what) {
   if (e != GL_NO_ERROR) {
     throw std::runtime_error(std::string("OpenGL error 0x") + std::to_string(e) + " in " + what);
   }
+}
+
+Buffer make_buffer(const void* data, std::size_t bytes) {
+  GLuint id = 0;
+  glCreateBuffers(1, &id);
+  glNamedBufferStorage(id, static_cast<GLsizeiptr>(std::max<std::size_t>(bytes, 4)), data,
+                       data ? 0 : GL_DYNAMIC_STORAGE_BIT);
+  return Buffer(id);
+}
+
+IndexedMesh::IndexedMesh(std::span<const float> vertices,
+                         std::initializer_list<int> attribute_sizes,
+                         std::span<const GLuint> indices)
+    : vertices_(make_buffer(vertices.empty() ? nullptr : vertices.data(), vertices.size_bytes())),
+      indices_(make_buffer(indices.empty() ? nullptr : indices.data(), indices.size_bytes())),
+      index_count_(static_cast<GLsizei>(indices.size())) {
+  GLuint vao = 0;
+  glCreateVertexArrays(1, &vao);
+  vao_ = VertexArray(vao);
+  int stride = 0;
+  for (int size : attribute_sizes) stride += size;
+  glVertexArrayVertexBuffer(vao, 0, vertices_.get(), 0,
+                            static_cast<GLsizei>(stride * static_cast<int>(sizeof(float))));
+  glVertexArrayElementBuffer(vao, indices_.get());
+  GLuint index = 0, offset = 0;
+  for (int size : attribute_sizes) {
+    glEnableVertexArrayAttrib(vao, index);
+    glVertexArrayAttribFormat(vao, index, size, GL_FLOAT, GL_FALSE, offset);
+    glVertexArrayAttribBinding(vao, index, 0);
+    ++index, offset += static_cast<GLuint>(static_cast<std::size_t>(size) * sizeof(float));
+  }
+  check_gl("mesh upload");
+}
+
+void IndexedMesh::draw() const {
+  if (index_count_ == 0) return;
+  GLint previous = 0;
+  glGetIntegerv(GL_VERTEX_ARRAY_BINDING, &previous);
+  glBindVertexArray(vao_.get());
+  glDrawElements(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr);
+  glBindVertexArray(static_cast<GLuint>(previous));
 }
 
 Texture make_texture(GLenum internal_format, int width, int height, int levels) {
@@ -67,7 +109,9 @@ GLuint compile(const char* file, const std::string& defines) {
   const std::size_t eol = src.find('\n');  // after "#version 450 core"
   src.insert(eol + 1, defines);
   const std::string_view name(file);
-  const GLenum type = name.ends_with(".vert") ? GL_VERTEX_SHADER : GL_FRAGMENT_SHADER;
+  const GLenum type = name.ends_with(".vert")   ? GL_VERTEX_SHADER
+                      : name.ends_with(".comp") ? GL_COMPUTE_SHADER
+                                                : GL_FRAGMENT_SHADER;
   const GLuint s = glCreateShader(type);
   const char* text = src.c_str();
   glShaderSource(s, 1, &text, nullptr);

@@ -1,6 +1,8 @@
 // Small RAII owners for GL objects, and the helpers every pass uses.
 #pragma once
 
+#include <initializer_list>
+#include <span>
 #include <string>
 #include <utility>
 
@@ -46,6 +48,26 @@ using Program = GlName<delete_program>;
 using Buffer = GlName<delete_buffer>;
 using VertexArray = GlName<delete_vertex_array>;
 using Query = GlName<delete_query>;
+
+// A buffer of `bytes` (at least 4) holding `data`; with no data it is writable by
+// glNamedBufferSubData/glClearNamedBufferData.
+Buffer make_buffer(const void* data, std::size_t bytes);
+
+// Triangles in GPU buffers: interleaved float vertices, attribute i being `attribute_sizes[i]`
+// consecutive floats, and three indices per triangle. draw() binds its vertex array only for
+// the draw: the full-screen passes rely on the context's empty one (GlContext).
+class IndexedMesh {
+ public:
+  IndexedMesh(std::span<const float> vertices, std::initializer_list<int> attribute_sizes,
+              std::span<const GLuint> indices);
+  void draw() const;
+  bool empty() const { return index_count_ == 0; }
+
+ private:
+  Buffer vertices_, indices_;
+  VertexArray vao_;
+  GLsizei index_count_ = 0;
+};
 
 // A 2D texture with `levels` mip levels, nearest filtering, clamped to edge.
 Texture make_texture(GLenum internal_format, int width, int height, int levels = 1);

@@ -30,6 +30,9 @@ Fn resolve(const char* name) {
 
 FORWARD(void, glBindTextureUnit, (GLuint unit, GLuint texture), (unit, texture))
 FORWARD(GLenum, glCheckNamedFramebufferStatus, (GLuint fb, GLenum target), (fb, target))
+FORWARD(void, glClearNamedBufferData,
+        (GLuint buf, GLenum format_internal, GLenum format, GLenum type, const void* data),
+        (buf, format_internal, format, type, data))
 FORWARD(void, glClearNamedFramebufferfv,
         (GLuint fb, GLenum buffer, GLint draw, const GLfloat* value), (fb, buffer, draw, value))
 FORWARD(void, glClipControl, (GLenum origin, GLenum depth), (origin, depth))
@@ -39,6 +42,8 @@ FORWARD(void, glCreateQueries, (GLenum target, GLsizei n, GLuint* ids), (target,
 FORWARD(void, glCreateTextures, (GLenum target, GLsizei n, GLuint* ids), (target, n, ids))
 FORWARD(void, glCreateVertexArrays, (GLsizei n, GLuint* ids), (n, ids))
 FORWARD(void, glEnableVertexArrayAttrib, (GLuint vao, GLuint index), (vao, index))
+FORWARD(void, glGetNamedBufferSubData, (GLuint buf, GLintptr offset, GLsizeiptr size, void* data),
+        (buf, offset, size, data))
 FORWARD(void, glGetQueryObjectui64v, (GLuint id, GLenum pname, GLuint64* params),
         (id, pname, params))
 FORWARD(void, glGetTextureImage,

@@ -9,6 +9,9 @@
 #include "renderer/blur_pass.hpp"
 #include "renderer/gbuffer_pass.hpp"
 #include "renderer/gl_context.hpp"
+#include "renderer/pmi_cache.hpp"
+#include "renderer/pmi_pass.hpp"
+#include "renderer/viewpoint_sphere.hpp"
 
 namespace aosuite::renderer {
 
@@ -38,6 +41,8 @@ struct Renderer::State {
   BlurPass blur_pass;
   BlendPass blend_pass;
   std::map<Technique, std::unique_ptr<AoPass>> ao_passes;
+  std::unique_ptr<PmiPass> pmi_pass;  // compiled on first use
+  PmiCache pmi_cache;
   // Targets, reallocated when the size changes.
   int width = 0, height = 0;
   GBuffer gbuffer;
@@ -91,6 +96,10 @@ void validate(const View& view, const RenderSettings& s) {
       !std::isfinite(p.contrast)) {
     fail("bias, intensity and contrast must be finite (contrast > 0)");
   }
+  if (s.technique == Technique::kPmi) make_icosphere(p.viewpoints);  // throws for a bad count
+  if (p.pmi_resolution < 16 || p.pmi_resolution > 8192) fail("pmi_resolution must be 16..8192");
+  if (p.importance_best < 0 || p.importance_best > p.viewpoints)
+    fail("importance_best must be 0..viewpoints");
   for (float w : p.level_weights) {
     if (!(w >= 0) || !std::isfinite(w)) fail("level weights must be finite and >= 0");
   }
@@ -111,7 +120,12 @@ Renderer::~Renderer() = default;
 
 std::string Renderer::gl_description() const { return state_->context->description(); }
 
-Images Renderer::render(const Scene& scene, const View& view, const RenderSettings& s) {
+std::shared_ptr<const PmiMaps> Renderer::pmi_maps(const Scene& scene, const PmiSettings& settings) {
+  return state_->pmi_cache.get(scene, settings);
+}
+
+Images Renderer::render(const Scene& scene, const View& view, const RenderSettings& s,
+                        const PmiMaps* pmi_override) {
   validate(view, s);
   State& st = *state_;
   if (s.width != st.width || s.height != st.height) st.allocate(s.width, s.height);
@@ -125,8 +139,14 @@ Images Renderer::render(const Scene& scene, const View& view, const RenderSettin
 
   const bool want_ao = s.outputs.needs_ao();
   if (want_ao) {
-    for (PassTime& t : st.ao_pass(s.technique).run(st.gbuffer, camera, s.params, st.ao_fb.get())) {
-      out.times.push_back(std::move(t));
+    if (s.technique == Technique::kPmi) {  // object space: cached maps drawn over the scene
+      const auto cached = pmi_override ? nullptr : pmi_maps(scene, pmi_settings(s.params));
+      if (!st.pmi_pass) st.pmi_pass = std::make_unique<PmiPass>();
+      out.times.push_back(
+          st.pmi_pass->run(scene, pmi_override ? *pmi_override : *cached, camera, st.ao_fb.get()));
+    } else {
+      for (PassTime& t : st.ao_pass(s.technique).run(st.gbuffer, camera, s.params, st.ao_fb.get()))
+        out.times.push_back(std::move(t));
     }
     if (s.params.blur != Blur::kNone) {
       out.times.push_back(st.blur_pass.run(st.gbuffer, s.params.blur, st.ao.get(), st.ao_fb.get(),
@@ -147,6 +167,8 @@ Images Renderer::render(const Scene& scene, const View& view, const RenderSettin
   if (s.outputs.with_ao) out.with_ao = rgba(st.with_ao);
   if (s.outputs.ao_only) out.ao_only = rgba(st.ao_only);
   out.depth = read_texture(st.gbuffer.depth.get(), w, h, GL_RED, GL_FLOAT, CV_32F);
+  if (s.outputs.normal)
+    out.normal = read_texture(st.gbuffer.normal.get(), w, h, GL_RGB, GL_FLOAT, CV_32FC3);
   if (s.outputs.ao_float) {
     out.ao = read_texture(st.ao.get(), w, h, GL_RED, GL_FLOAT, CV_32F);
     // The shaders guard every division; should one ever slip, fail loudly, never write it.

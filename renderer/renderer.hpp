@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "renderer/frame.hpp"
+#include "renderer/pmi_channel.hpp"
 #include "renderer/technique.hpp"
 
 namespace aosuite::renderer {
@@ -15,6 +16,7 @@ namespace aosuite::renderer {
 // Which images the caller wants; passes nobody needs are not run.
 struct Outputs {
   bool no_ao = true, with_ao = true, ao_only = true, ao_float = true;
+  bool normal = false;  // the G-buffer normal (for the ray-traced reference); never by "all"
   bool needs_ao() const { return with_ao || ao_only || ao_float; }
 };
 Outputs parse_outputs(const std::string& csv);  // e.g. "no_ao,ao_float"; "all"
@@ -30,6 +32,7 @@ struct Images {
   cv::Mat no_ao, with_ao, ao_only;  // CV_8UC4 RGBA, sRGB, top row first
   cv::Mat ao;                       // CV_32F visibility in [0, 1]; 1 on background
   cv::Mat depth;                    // CV_32F linear view depth; 0 on background
+  cv::Mat normal;                   // CV_32FC3 view-space unit normal (x, y, z); Outputs::normal
   std::vector<PassTime> times;
 };
 
@@ -38,7 +41,13 @@ class Renderer {
   Renderer();  // makes an OSMesa GL 4.5 core context; throws if none
   ~Renderer();
   std::string gl_description() const;
-  Images render(const Scene& scene, const View& view, const RenderSettings& settings);
+  // `pmi_override`: for Technique::kPmi, draw these maps' per-vertex values instead of the
+  // scene's own PMI (how `aosuite pmi-study` shows ray-traced per-vertex AO the same way).
+  Images render(const Scene& scene, const View& view, const RenderSettings& settings,
+                const PmiMaps* pmi_override = nullptr);
+  // PMI's view-independent channel and maps, computed once per scene content and settings
+  // (what Technique::kPmi renders; `aosuite viewpoints` reads the per-view values).
+  std::shared_ptr<const PmiMaps> pmi_maps(const Scene& scene, const PmiSettings& settings);
 
  private:
   struct State;

@@ -183,7 +183,9 @@ const glm::vec3 kGround(0.55f, 0.6f, 0.5f), kWall(0.85f, 0.8f, 0.7f), kRoof(0.6f
     kWood(0.55f, 0.4f, 0.25f), kIron(0.35f, 0.35f, 0.38f);
 
 Mesh ground(float half) {
-  return make_quad({-half, 0, -half}, {0, 0, 2 * half}, {2 * half, 0, 0}, kGround);
+  Mesh m = make_quad({-half, 0, -half}, {0, 0, 2 * half}, {2 * half, 0, 0}, kGround);
+  m.ground = true;
+  return m;
 }
 
 Scene plane() {

@@ -15,6 +15,9 @@ struct Mesh {
   std::vector<glm::vec3> normals;  // per vertex; computed when a loader has none
   std::vector<glm::uvec3> triangles;
   glm::vec3 colour{0.8f};
+  // A ground plane: not part of "the object" for object-space techniques (PMI), whose
+  // viewpoint sphere a 40 m plane would swallow.
+  bool ground = false;
 };
 
 struct View {

@@ -12,8 +12,9 @@ Technique parse_technique(std::string_view name) {
   if (name == "sao") return Technique::kSao;
   if (name == "mssao") return Technique::kMssao;
   if (name == "ue4") return Technique::kUe4;
+  if (name == "pmi") return Technique::kPmi;
   throw std::invalid_argument("unknown technique '" + std::string(name) +
-                              "' (expected alchemy, sao, mssao or ue4)");
+                              "' (expected alchemy, sao, mssao, ue4 or pmi)");
 }
 
 std::string_view technique_name(Technique t) {
@@ -26,6 +27,8 @@ std::string_view technique_name(Technique t) {
       return "mssao";
     case Technique::kUe4:
       return "ue4";
+    case Technique::kPmi:
+      return "pmi";
   }
   return "alchemy";
 }
@@ -66,6 +69,8 @@ AoParams default_params(Technique t) {
       // Published Intensity 0.5 and Power 2.0; bias is a minimum horizon sine.
       p.samples = 8, p.radius = 0.05f, p.bias = 0.03f, p.intensity = 0.5f, p.contrast = 2;
       break;
+    case Technique::kPmi:  // the struct's viewpoints and pmi_resolution are the paper's
+      break;
   }
   return p;
 }
@@ -91,8 +96,9 @@ T parse_number(std::string_view key, std::string_view value) {
 
 }  // namespace
 
-std::array<std::string_view, 7> param_names() {
-  return {"samples", "radius", "bias", "intensity", "contrast", "blur", "level_weights"};
+std::array<std::string_view, 10> param_names() {
+  return {"samples", "radius",        "bias",       "intensity",      "contrast",
+          "blur",    "level_weights", "viewpoints", "pmi_resolution", "importance_best"};
 }
 
 void set_param(AoParams& p, std::string_view key, std::string_view value) {
@@ -106,6 +112,12 @@ void set_param(AoParams& p, std::string_view key, std::string_view value) {
     p.intensity = parse_number<float>(key, value);
   } else if (key == "contrast") {
     p.contrast = parse_number<float>(key, value);
+  } else if (key == "viewpoints") {
+    p.viewpoints = parse_number<int>(key, value);
+  } else if (key == "pmi_resolution") {
+    p.pmi_resolution = parse_number<int>(key, value);
+  } else if (key == "importance_best") {
+    p.importance_best = parse_number<int>(key, value);
   } else if (key == "blur") {
     p.blur = parse_blur(value);
   } else if (key == "level_weights") {

@@ -7,8 +7,10 @@
 
 namespace aosuite::renderer {
 
-enum class Technique { kAlchemy, kSao, kMssao, kUe4 };
-Technique parse_technique(std::string_view name);  // alchemy|sao|mssao|ue4
+// kPmi: viewpoint-based AO (González, Sbert & Feixas 2008), per polygon in object space
+// (renderer/pmi_channel.hpp), not a screen-space estimator.
+enum class Technique { kAlchemy, kSao, kMssao, kUe4, kPmi };
+Technique parse_technique(std::string_view name);  // alchemy|sao|mssao|ue4|pmi
 std::string_view technique_name(Technique t);
 
 enum class Blur { kNone, kGaussian, kBilateral };
@@ -24,18 +26,27 @@ struct AoParams {
   // MSSAO: intensity of each of the five levels (full, 1/2, 1/4, 1/8, 1/16); 0 skips a level
   std::array<float, 5> level_weights{1.0f, 0.5f, 0.3f, 0.3f, 0.3f};
   Blur blur = Blur::kBilateral;
+  // PMI: viewpoints on the subdivided icosahedron (12, 42, 162, 642 or 2562), the item
+  // buffer's width in pixels (its height is 3/4 of it, as the paper's 640x480..2560x1920),
+  // and p(V): 0 = projected area (the paper), k > 0 = the k best views (lowest VMI)
+  // share 99 % of the importance and the rest share 1 % (the paper's Figure 7).
+  int viewpoints = 162;
+  int pmi_resolution = 1280;
+  int importance_best = 0;
 };
 
 // Thesis defaults: Alchemy r=1 s=16; SAO r=10 s=8; UE4 r=0.05 s=8; MSSAO r=2 s=16 with
-// level weights 1.0/0.5/0.3/0.3/0.3. Biases and intensities are the published ones.
+// level weights 1.0/0.5/0.3/0.3/0.3. Biases and intensities are the published ones. PMI: the
+// paper's recommended 162 viewpoints at 1280x960 (radius, samples and bias are unused).
 AoParams default_params(Technique t);
 
 // Sets one parameter from text, as suites and `--param key=value` give them: samples, radius,
-// bias, intensity, contrast, blur (none|gaussian|bilateral), level_weights ("1,0.5,0.3,0.3,0.3").
+// bias, intensity, contrast, blur (none|gaussian|bilateral), level_weights ("1,0.5,0.3,0.3,0.3"),
+// viewpoints, pmi_resolution, importance_best.
 // Throws std::invalid_argument naming the key and the problem (unknown key, not a number,
 // non-finite, out of range).
 void set_param(AoParams& params, std::string_view key, std::string_view value);
 // The names set_param accepts, in a stable order.
-std::array<std::string_view, 7> param_names();
+std::array<std::string_view, 10> param_names();
 
 }  // namespace aosuite::renderer

@@ -1,0 +1,144 @@
+// `aosuite error`: one technique's AO term (Images::ao, after its default blur) against the
+// ray-traced reference at the technique's radius, on the same G-buffer pixels; prints RMSE,
+// MAE, bias, PSNR and SSIM over all, depth-edge and interior pixels next to the reference's
+// noise floor, and optionally writes the reference and an error heat map.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "cli/commands.hpp"
+#include "cli/gl_command_util.hpp"
+#include "compare/image_io.hpp"
+#include "reference/reference_cache.hpp"
+#include "renderer/renderer.hpp"
+#include "renderer/scene_file.hpp"
+
+namespace aosuite::cli {
+namespace {
+
+namespace fs = std::filesystem;
+namespace rd = aosuite::renderer;
+namespace ref = aosuite::reference;
+
+struct ErrorArgs {
+  std::string scene = "village", view, technique = "alchemy", variant = "ao", out;
+  int width = 1920, height = 1080, rays = 256;
+  std::optional<std::string> samples, radius;
+  std::vector<std::string> params;
+  bool json = false;
+};
+
+cv::Mat grey_rgba(const cv::Mat& ao) {
+  cv::Mat out(ao.size(), CV_8UC4);
+  for (int y = 0; y < ao.rows; ++y) {
+    for (int x = 0; x < ao.cols; ++x) {
+      const auto v = cv::saturate_cast<unsigned char>(ao.at<float>(y, x) * 255.0f + 0.5f);
+      out.at<cv::Vec4b>(y, x) = {v, v, v, 255};
+    }
+  }
+  return out;
+}
+
+// Signed error, technique - reference: red where the technique is too bright, blue where it is
+// too dark, full colour at |error| >= 0.25; background black.
+cv::Mat heat_map(const cv::Mat& estimate, const cv::Mat& reference, const cv::Mat& depth) {
+  cv::Mat out(estimate.size(), CV_8UC4, cv::Scalar(0, 0, 0, 255));
+  for (int y = 0; y < out.rows; ++y) {
+    for (int x = 0; x < out.cols; ++x) {
+      if (!(depth.at<float>(y, x) > 0)) continue;
+      const float e = estimate.at<float>(y, x) - reference.at<float>(y, x);
+      const auto s = cv::saturate_cast<unsigned char>(std::min(std::abs(e) / 0.25f, 1.0f) * 255);
+      const auto rest = static_cast<unsigned char>(255 - s);
+      out.at<cv::Vec4b>(y, x) =
+          e > 0 ? cv::Vec4b{255, rest, rest, 255} : cv::Vec4b{rest, rest, 255, 255};
+    }
+  }
+  return out;
+}
+
+void print_stats(const char* name, const ref::ErrorStats& s) {
+  fmt::print("  {:<9} {:>9} {:>8.4f} {:>8.4f} {:>8.4f} {:>+8.4f} {:>7.2f} {:>7.4f}\n", name,
+             s.pixels, s.rmse, s.noise_floor, s.mae, s.bias, s.psnr, s.ssim);
+}
+
+int run_error(const ErrorArgs& a) {
+  const rd::Scene scene = rd::load_scene(a.scene);
+  const rd::View& view = rd::find_view(scene, a.view);
+  rd::RenderSettings s;
+  s.width = a.width, s.height = a.height;
+  s.technique = rd::parse_technique(a.technique);
+  s.params = technique_params(s.technique, a.samples, a.radius, a.params);
+  s.outputs = rd::parse_outputs("ao_float");
+  s.outputs.normal = true;
+  const ref::ReferenceSettings rs{a.rays, s.params.radius, ref::parse_variant(a.variant)};
+  ref::validate(rs);
+
+  rd::Renderer renderer;
+  const rd::Images img = renderer.render(scene, view, s);
+  ref::ReferenceCache cache(scene, ref::default_cache_dir());
+  const rd::Camera camera = rd::make_camera(view, s.width, s.height);
+  const cv::Mat reference = cache.get(camera, img.depth, img.normal, rs);
+  const ref::ErrorReport r = ref::measure_error(img.ao, reference, img.depth, {8, 0.05f, rs.rays});
+
+  const std::string stem = fmt::format("{}_{}_{}", scene.name, view.name, a.technique);
+  if (!a.out.empty()) {
+    const fs::path dir(a.out);
+    fs::create_directories(dir);
+    write_exr(dir / (stem + "_reference.exr"), reference);
+    write_png_rgba8(dir / (stem + "_reference.png"), grey_rgba(reference));
+    write_png_rgba8(dir / (stem + "_ao.png"), grey_rgba(img.ao));
+    write_png_rgba8(dir / (stem + "_error.png"), heat_map(img.ao, reference, img.depth));
+  }
+  if (a.json) {
+    nlohmann::ordered_json j;
+    j["scene"] = scene.name, j["view"] = view.name, j["technique"] = a.technique;
+    j["width"] = s.width, j["height"] = s.height;
+    j["samples"] = s.params.samples, j["radius"] = s.params.radius;
+    j["intensity"] = s.params.intensity;
+    j["reference"] = {{"variant", a.variant},
+                      {"rays", rs.rays},
+                      {"radius", rs.radius},
+                      {"cached", cache.last_was_cached()},
+                      {"seconds", cache.last_seconds()}};
+    j["error"] = to_json(r);
+    fmt::print("{}\n", j.dump(2));
+    return kExitSame;
+  }
+  fmt::print("{} {}x{} s={} r={:g}: reference {} {} rays, {}\n", stem, s.width, s.height,
+             s.params.samples, s.params.radius, a.variant, rs.rays,
+             cache.last_was_cached() ? std::string("from cache")
+                                     : fmt::format("traced in {:.1f} s", cache.last_seconds()));
+  fmt::print("  {:<9} {:>9} {:>8} {:>8} {:>8} {:>8} {:>7} {:>7}\n", "", "pixels", "RMSE", "noise",
+             "MAE", "bias", "PSNR", "SSIM");
+  print_stats("all", r.all);
+  print_stats("edge", r.edge);
+  print_stats("interior", r.interior);
+  return kExitSame;
+}
+
+}  // namespace
+
+void add_error_command(CLI::App& app, int& rc) {
+  auto a = std::make_shared<ErrorArgs>();
+  CLI::App* cmd =
+      app.add_subcommand("error", "Measure a technique's AO against a ray-traced reference");
+  cmd->add_option("--scene", a->scene, "built-in scene name or scene file (.toml)")
+      ->capture_default_str();
+  cmd->add_option("--view", a->view, "view name or index (default: the first)");
+  cmd->add_option("--technique", a->technique, "alchemy|sao|mssao|ue4")->capture_default_str();
+  cmd->add_option("--width", a->width)->capture_default_str();
+  cmd->add_option("--height", a->height)->capture_default_str();
+  cmd->add_option("--samples", a->samples, "samples per pixel (default: the technique's)");
+  cmd->add_option("--radius", a->radius, "radius in scene units (the reference uses it too)");
+  cmd->add_option("--param", a->params, "KEY=VALUE, repeatable (as for render)");
+  cmd->add_option("--rays", a->rays, "reference rays per pixel")->capture_default_str();
+  cmd->add_option("--variant", a->variant, "reference: ao|obscurance|unbounded")
+      ->capture_default_str();
+  cmd->add_flag("--json", a->json, "print the metrics as JSON");
+  cmd->add_option("--out", a->out, "write the reference (EXR, PNG), the AO and an error heat map");
+  guarded(cmd, rc, "error", [a] { return run_error(*a); });
+}
+
+}  // namespace aosuite::cli

@@ -1,0 +1,63 @@
+#include "cli/gl_command_util.hpp"
+
+#include <OpenImageIO/imageio.h>
+#include <fmt/format.h>
+
+#include <algorithm>
+
+#include "compare/image_io.hpp"
+
+namespace aosuite::cli {
+
+namespace rd = aosuite::renderer;
+namespace fs = std::filesystem;
+
+rd::AoParams technique_params(rd::Technique t, const std::optional<std::string>& samples,
+                              const std::optional<std::string>& radius,
+                              const std::vector<std::string>& params) {
+  rd::AoParams p = rd::default_params(t);
+  if (samples) rd::set_param(p, "samples", *samples);
+  if (radius) rd::set_param(p, "radius", *radius);
+  for (const std::string& kv : params) {
+    const std::size_t eq = kv.find('=');
+    if (eq == std::string::npos) {
+      throw std::invalid_argument(fmt::format("--param '{}': expected KEY=VALUE", kv));
+    }
+    rd::set_param(p, kv.substr(0, eq), kv.substr(eq + 1));
+  }
+  return p;
+}
+
+void write_exr(const fs::path& path, const cv::Mat& image) {
+  const fs::path tmp = path.parent_path() / fmt::format(".{}.tmp.exr", path.filename().string());
+  auto out = OIIO::ImageOutput::create(tmp.string());
+  const OIIO::ImageSpec spec(image.cols, image.rows, 1, OIIO::TypeDesc::FLOAT);
+  if (!out || !out->open(tmp.string(), spec) ||
+      !out->write_image(OIIO::TypeDesc::FLOAT, image.data) || !out->close()) {
+    throw FileError(fmt::format("{}: cannot write EXR: {}", path.string(), OIIO::geterror()));
+  }
+  fs::rename(tmp, path);
+}
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+nlohmann::ordered_json to_json(const reference::ErrorStats& s) {
+  return {{"pixels", s.pixels},
+          {"rmse", s.rmse},
+          {"mae", s.mae},
+          {"bias", s.bias},
+          {"psnr", s.psnr},
+          {"ssim", s.ssim},
+          {"noise_floor", s.noise_floor}};
+}
+
+nlohmann::ordered_json to_json(const reference::ErrorReport& r) {
+  return {{"all", to_json(r.all)}, {"edge", to_json(r.edge)}, {"interior", to_json(r.interior)}};
+}
+
+}  // namespace aosuite::cli

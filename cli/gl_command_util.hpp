@@ -1,0 +1,32 @@
+// What several OpenGL commands share: technique parameters from options, float EXR output,
+// medians of timed runs, and error metrics as JSON.
+#pragma once
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <opencv2/core.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "reference/error_metrics.hpp"
+#include "renderer/technique.hpp"
+
+namespace aosuite::cli {
+
+// The technique's defaults, then --samples, --radius and each --param KEY=VALUE in order.
+// Throws std::invalid_argument for a malformed pair or a bad value.
+renderer::AoParams technique_params(renderer::Technique t,
+                                    const std::optional<std::string>& samples,
+                                    const std::optional<std::string>& radius,
+                                    const std::vector<std::string>& params);
+
+// A CV_32F single-channel image as float EXR, written atomically; throws FileError.
+void write_exr(const std::filesystem::path& path, const cv::Mat& image);
+
+double median(std::vector<double> v);
+
+nlohmann::ordered_json to_json(const reference::ErrorStats& s);
+nlohmann::ordered_json to_json(const reference::ErrorReport& r);
+
+}  // namespace aosuite::cli

@@ -1,0 +1,340 @@
+// `aosuite sweep GRID.toml`: every technique over its samples x radius (x intensity) grid on
+// the grid's scenes, views and resolutions; per configuration the median AO time (all passes
+// but the G-buffer's and the blend's) and the error against the ray-traced reference at the
+// technique's radius (and against the unbounded reference). Writes sweep.csv, sweep.json
+// (rows and the fit-on-one-view result), sweep.md (both as tables) and time-vs-RMSE SVGs per
+// resolution (against the radius-r and the unbounded reference).
+#include <fmt/format.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <tuple>
+
+#include "cli/commands.hpp"
+#include "cli/gl_command_util.hpp"
+#include "cli/sweep_grid.hpp"
+#include "cli/sweep_plot.hpp"
+#include "compare/image_io.hpp"
+#include "reference/reference_cache.hpp"
+#include "renderer/renderer.hpp"
+#include "renderer/scene_file.hpp"
+
+namespace aosuite::cli {
+namespace {
+
+namespace fs = std::filesystem;
+namespace rd = aosuite::renderer;
+namespace ref = aosuite::reference;
+
+struct Row {
+  std::string scene, view;
+  std::size_t view_index = 0;
+  rd::Technique technique{};
+  int width = 0, height = 0, samples = 0;
+  float radius = 0, intensity = 0;
+  double gl_ms = 0, wall_ms = 0;
+  ref::ErrorReport error;
+  ref::ErrorStats unbounded;
+};
+
+struct Timed {
+  rd::Images images;
+  double gl_ms, wall_ms;
+};
+
+// One warm-up frame (llvmpipe compiles shader variants on first use), then the median over
+// `runs` frames of the AO work: every pass except the G-buffer and the blend.
+Timed render_timed(rd::Renderer& renderer, const rd::Scene& scene, const rd::View& view,
+                   const rd::RenderSettings& s, int runs) {
+  renderer.render(scene, view, s);
+  std::vector<double> gl, wall;
+  Timed t{{}, 0, 0};
+  for (int r = 0; r < runs; ++r) {
+    t.images = renderer.render(scene, view, s);
+    double g = 0, w = 0;
+    for (const rd::PassTime& p : t.images.times) {
+      if (p.pass == "gbuffer" || p.pass == "blend") continue;
+      g += p.gpu_ms, w += p.wall_ms;
+    }
+    gl.push_back(g), wall.push_back(w);
+  }
+  t.gl_ms = median(gl), t.wall_ms = median(wall);
+  return t;
+}
+
+std::vector<const rd::View*> pick_views(const rd::Scene& scene,
+                                        const std::vector<std::string>& names) {
+  std::vector<const rd::View*> views;
+  if (names.empty()) {
+    for (const rd::View& v : scene.views) views.push_back(&v);
+  } else {
+    for (const std::string& n : names) views.push_back(&rd::find_view(scene, n));
+  }
+  return views;
+}
+
+void sweep_view(rd::Renderer& renderer, const SweepGrid& g, const rd::Scene& scene,
+                ref::ReferenceCache& cache, const rd::View& view, std::size_t view_index, int w,
+                int h, std::vector<Row>& rows) {
+  const rd::Camera camera = rd::make_camera(view, w, h);
+  rd::RenderSettings gs;
+  gs.width = w, gs.height = h;
+  gs.outputs = rd::Outputs{false, false, false, false};
+  gs.outputs.normal = true;
+  const rd::Images gbuffer = renderer.render(scene, view, gs);
+  const ref::MetricOptions metric{8, 0.05f, g.rays};
+  cv::Mat unbounded;
+  if (g.unbounded)
+    unbounded =
+        cache.get(camera, gbuffer.depth, gbuffer.normal, {g.rays, 1, ref::Variant::kUnbounded});
+  for (const TechniqueGrid& tg : g.techniques) {
+    const std::vector<float> intensities =
+        tg.intensities.empty() ? std::vector<float>{rd::default_params(tg.technique).intensity}
+                               : tg.intensities;
+    for (int samples : tg.samples) {
+      for (float radius : tg.radii) {
+        const cv::Mat reference =
+            cache.get(camera, gbuffer.depth, gbuffer.normal, {g.rays, radius, ref::Variant::kAo});
+        for (float intensity : intensities) {
+          rd::RenderSettings s;
+          s.width = w, s.height = h, s.technique = tg.technique;
+          s.params = rd::default_params(tg.technique);
+          s.params.samples = samples, s.params.radius = radius, s.params.intensity = intensity;
+          s.outputs = rd::parse_outputs("ao_float");
+          const Timed t = render_timed(renderer, scene, view, s, g.runs);
+          Row row{scene.name, view.name,
+                  view_index, tg.technique,
+                  w,          h,
+                  samples,    radius,
+                  intensity,  t.gl_ms,
+                  t.wall_ms,  ref::measure_error(t.images.ao, reference, t.images.depth, metric),
+                  {}};
+          if (g.unbounded)
+            row.unbounded = ref::measure_error(t.images.ao, unbounded, t.images.depth, metric).all;
+          fmt::print(
+              "{} {} {}x{} {} s={} r={:g} k={:g}: {:.1f} ms, RMSE {:.4f} (unbounded {:.4f})\n",
+              row.scene, row.view, w, h, rd::technique_name(row.technique), samples, radius,
+              intensity, row.wall_ms, row.error.all.rmse, row.unbounded.rmse);
+          std::fflush(stdout);
+          rows.push_back(std::move(row));
+        }
+      }
+    }
+  }
+}
+
+std::string csv(const std::vector<Row>& rows, bool unbounded) {
+  std::string out =
+      "scene,view,technique,width,height,samples,radius,intensity,ao_gl_ms,ao_wall_ms,pixels,rmse,"
+      "mae,bias,psnr,ssim,noise_floor,edge_rmse,interior_rmse,rmse_unbounded,bias_unbounded,"
+      "ssim_unbounded\n";
+  for (const Row& r : rows) {
+    const ref::ErrorStats& a = r.error.all;
+    out += fmt::format(
+        "{},{},{},{},{},{},{:g},{:g},{:.3f},{:.3f},{},{:.6f},{:.6f},{:.6f},{:.4f},{:.6f},{:.6f},{:."
+        "6f},{:.6f}",
+        r.scene, r.view, rd::technique_name(r.technique), r.width, r.height, r.samples, r.radius,
+        r.intensity, r.gl_ms, r.wall_ms, a.pixels, a.rmse, a.mae, a.bias, a.psnr, a.ssim,
+        a.noise_floor, r.error.edge.rmse, r.error.interior.rmse);
+    out += unbounded ? fmt::format(",{:.6f},{:.6f},{:.6f}\n", r.unbounded.rmse, r.unbounded.bias,
+                                   r.unbounded.ssim)
+                     : ",,,\n";
+  }
+  return out;
+}
+
+// The rows and the fit as Markdown tables, for docs/results.md.
+std::string markdown(const std::vector<Row>& rows, const nlohmann::ordered_json& fit,
+                     bool unbounded) {
+  std::string md =
+      "| scene | view | technique | size | s | r | k | AO ms | RMSE | noise | bias | SSIM | edge "
+      "RMSE "
+      "| interior RMSE | RMSE unbounded "
+      "|\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const Row& r : rows) {
+    const ref::ErrorStats& a = r.error.all;
+    md += fmt::format(
+        "| {} | {} | {} | {}×{} | {} | {:g} | {:g} | {:.1f} | {:.4f} | {:.4f} | {:+.4f} | "
+        "{:.3f} | {:.4f} | {:.4f} | {} |\n",
+        r.scene, r.view, rd::technique_name(r.technique), r.width, r.height, r.samples, r.radius,
+        r.intensity, r.wall_ms, a.rmse, a.noise_floor, a.bias, a.ssim, r.error.edge.rmse,
+        r.error.interior.rmse, unbounded ? fmt::format("{:.4f}", r.unbounded.rmse) : "–");
+  }
+  md +=
+      "\n| scene | technique | size | fitted on | s | r | k | RMSE there | evaluated on | RMSE "
+      "there | best RMSE there |\n|---|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const auto& f : fit) {
+    md +=
+        fmt::format("| {} | {} | {}×{} | {} | {} | {:g} | {:g} | {:.4f} | {} | {:.4f} | {:.4f} |\n",
+                    f["scene"].get<std::string>(), f["technique"].get<std::string>(),
+                    f["width"].get<int>(), f["height"].get<int>(), f["fit_view"].get<std::string>(),
+                    f["samples"].get<int>(), f["radius"].get<float>(), f["intensity"].get<float>(),
+                    f["rmse_fit_view"].get<double>(), f["eval_view"].get<std::string>(),
+                    f["rmse_eval_view"].get<double>(), f["best_rmse_eval_view"].get<double>());
+  }
+  return md;
+}
+
+nlohmann::ordered_json row_json(const Row& r, bool unbounded) {
+  nlohmann::ordered_json j{{"scene", r.scene},
+                           {"view", r.view},
+                           {"technique", rd::technique_name(r.technique)},
+                           {"width", r.width},
+                           {"height", r.height},
+                           {"samples", r.samples},
+                           {"radius", r.radius},
+                           {"intensity", r.intensity},
+                           {"ao_gl_ms", r.gl_ms},
+                           {"ao_wall_ms", r.wall_ms},
+                           {"error", to_json(r.error)}};
+  if (unbounded) j["error_unbounded"] = to_json(r.unbounded);
+  return j;
+}
+
+// For each scene, technique and resolution: the configuration with the lowest RMSE on the
+// first view, and its RMSE on the second (beside the second view's own best).
+nlohmann::ordered_json fit_on_one_view(const std::vector<Row>& rows) {
+  using Group = std::tuple<std::string, rd::Technique, int, int>;
+  std::map<Group, const Row*> best_fit, best_eval;
+  for (const Row& r : rows) {
+    const Group key{r.scene, r.technique, r.width, r.height};
+    auto& slot = r.view_index == 0 ? best_fit[key] : best_eval[key];
+    if (r.view_index <= 1 && (!slot || r.error.all.rmse < slot->error.all.rmse)) slot = &r;
+  }
+  nlohmann::ordered_json out = nlohmann::ordered_json::array();
+  for (const auto& [key, fit] : best_fit) {
+    const Row* eval = nullptr;
+    for (const Row& r : rows) {
+      if (r.view_index == 1 && r.scene == fit->scene && r.technique == fit->technique &&
+          r.width == fit->width && r.height == fit->height && r.samples == fit->samples &&
+          r.radius == fit->radius && r.intensity == fit->intensity)
+        eval = &r;
+    }
+    if (!eval) continue;  // a scene with one view has nothing to evaluate on
+    out.push_back({{"scene", fit->scene},
+                   {"technique", rd::technique_name(fit->technique)},
+                   {"width", fit->width},
+                   {"height", fit->height},
+                   {"fit_view", fit->view},
+                   {"eval_view", eval->view},
+                   {"samples", fit->samples},
+                   {"radius", fit->radius},
+                   {"intensity", fit->intensity},
+                   {"rmse_fit_view", fit->error.all.rmse},
+                   {"rmse_eval_view", eval->error.all.rmse},
+                   {"best_rmse_eval_view", best_eval.at(key)->error.all.rmse}});
+  }
+  return out;
+}
+
+// One plot per resolution: each configuration's mean time and mean RMSE over scenes and views,
+// against the reference at the technique's radius or (`unbounded`) against unbounded rays,
+// the yardstick common to all radii.
+void write_plots(const std::vector<Row>& rows, const fs::path& dir, const std::string& name,
+                 bool unbounded) {
+  using Config = std::tuple<rd::Technique, int, float, float>;
+  std::map<std::pair<int, int>, std::map<Config, std::tuple<double, double, int>>> sums;
+  for (const Row& r : rows) {
+    auto& [t, e, n] = sums[{r.width, r.height}][{r.technique, r.samples, r.radius, r.intensity}];
+    t += r.wall_ms, e += unbounded ? r.unbounded.rmse : r.error.all.rmse, ++n;
+  }
+  for (const auto& [res, configs] : sums) {
+    std::vector<PlotPoint> points;
+    for (const auto& [c, s] : configs) {
+      const auto& [t, e, n] = s;
+      const auto [tech, samples, radius, intensity] = c;
+      points.push_back(
+          {std::string(rd::technique_name(tech)), std::max(t / n, 1e-3), e / n,
+           fmt::format("{} s={} r={:g} k={:g}: {:.1f} ms, RMSE {:.4f}", rd::technique_name(tech),
+                       samples, radius, intensity, t / n, e / n)});
+    }
+    const std::string svg = pareto_svg(
+        points,
+        fmt::format("{}: AO time vs RMSE at {}x{} (mean over scenes and views)", name, res.first,
+                    res.second),
+        "AO passes, median wall ms (llvmpipe, log scale)",
+        unbounded ? "RMSE vs ray-traced AO (unbounded)" : "RMSE vs ray-traced AO (radius r)");
+    write_file_atomic(dir / fmt::format("sweep_{}x{}{}.svg", res.first, res.second,
+                                        unbounded ? "_unbounded" : ""),
+                      {reinterpret_cast<const unsigned char*>(svg.data()), svg.size()});
+  }
+}
+
+void write_text(const fs::path& path, const std::string& text) {
+  write_file_atomic(path, {reinterpret_cast<const unsigned char*>(text.data()), text.size()});
+}
+
+// "1280x720" -> {1280, 720}; throws std::invalid_argument otherwise.
+std::pair<int, int> parse_size(const std::string& text) {
+  int w = 0, h = 0;
+  char x = 0, extra = 0;
+  if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || x != 'x' || w < 16 ||
+      h < 16 || w > 8192 || h > 8192) {
+    throw std::invalid_argument("--resolution '" + text + "': expected WxH, sides 16..8192");
+  }
+  return {w, h};
+}
+
+int run_sweep(const std::string& grid_file, const std::vector<std::string>& resolutions,
+              const std::string& out) {
+  SweepGrid g = read_sweep_grid(grid_file);
+  if (!resolutions.empty()) {
+    g.resolutions.clear();
+    for (const std::string& r : resolutions) g.resolutions.push_back(parse_size(r));
+  }
+  rd::Renderer renderer;
+  std::vector<Row> rows;
+  for (const std::string& name : g.scenes) {
+    const rd::Scene scene = rd::load_scene(name);
+    const std::vector<const rd::View*> views = pick_views(scene, g.views);
+    ref::ReferenceCache cache(scene, ref::default_cache_dir());
+    for (const auto& [w, h] : g.resolutions) {
+      for (std::size_t v = 0; v < views.size(); ++v)
+        sweep_view(renderer, g, scene, cache, *views[v], v, w, h, rows);
+    }
+  }
+  const fs::path dir(out);
+  fs::create_directories(dir);
+  write_text(dir / "sweep.csv", csv(rows, g.unbounded));
+  nlohmann::ordered_json j;
+  j["grid"] = g.name, j["rays"] = g.rays, j["runs"] = g.runs, j["gl"] = renderer.gl_description();
+  j["rows"] = nlohmann::ordered_json::array();
+  for (const Row& r : rows) j["rows"].push_back(row_json(r, g.unbounded));
+  j["fit_on_one_view"] = fit_on_one_view(rows);
+  write_text(dir / "sweep.json", j.dump(2) + "\n");
+  write_text(dir / "sweep.md", markdown(rows, j["fit_on_one_view"], g.unbounded));
+  write_plots(rows, dir, g.name, false);
+  if (g.unbounded) write_plots(rows, dir, g.name, true);
+  fmt::print("fit on the first view, evaluated on the second:\n");
+  for (const auto& f : j["fit_on_one_view"]) {
+    fmt::print("  {} {} {}x{}: s={} r={} k={} RMSE {:.4f} on {}, {:.4f} on {} (its best {:.4f})\n",
+               f["scene"].get<std::string>(), f["technique"].get<std::string>(),
+               f["width"].get<int>(), f["height"].get<int>(), f["samples"].get<int>(),
+               f["radius"].get<float>(), f["intensity"].get<float>(),
+               f["rmse_fit_view"].get<double>(), f["fit_view"].get<std::string>(),
+               f["rmse_eval_view"].get<double>(), f["eval_view"].get<std::string>(),
+               f["best_rmse_eval_view"].get<double>());
+  }
+  fmt::print("{} rows: {}\n", rows.size(), (dir / "sweep.csv").string());
+  return kExitSame;
+}
+
+}  // namespace
+
+void add_sweep_command(CLI::App& app, int& rc) {
+  auto grid = std::make_shared<std::string>();
+  auto out = std::make_shared<std::string>("reports/sweep");
+  auto resolutions = std::make_shared<std::vector<std::string>>();
+  CLI::App* cmd = app.add_subcommand(
+      "sweep", "Time and error of each technique over a samples x radius x resolution grid");
+  cmd->add_option("grid", *grid, "grid file (suites/sweep_ci.toml, suites/sweep_full.toml)")
+      ->required();
+  cmd->add_option("--out", *out, "output directory")->capture_default_str();
+  cmd->add_option("--resolution", *resolutions, "WxH, repeatable: replaces the grid's resolutions");
+  guarded(cmd, rc, "sweep",
+          [grid, resolutions, out] { return run_sweep(*grid, *resolutions, *out); });
+}
+
+}  // namespace aosuite::cli

@@ -1,0 +1,95 @@
+#include "cli/sweep_grid.hpp"
+
+#include <fmt/format.h>
+#include <toml++/toml.h>
+
+#include "compare/image_io.hpp"
+
+namespace aosuite::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+template <typename T>
+std::vector<T> numbers(const toml::node_view<const toml::node>& node, const std::string& where) {
+  std::vector<T> out;
+  const toml::array* arr = node.as_array();
+  if (!arr || arr->empty()) throw std::invalid_argument(where + " must be a non-empty array");
+  for (const toml::node& n : *arr) {
+    const std::optional<double> v = n.value<double>();
+    if (!v) throw std::invalid_argument(where + " must hold numbers");
+    out.push_back(static_cast<T>(*v));
+  }
+  return out;
+}
+
+std::vector<std::string> strings(const toml::node_view<const toml::node>& node,
+                                 const std::string& where) {
+  std::vector<std::string> out;
+  if (!node) return out;
+  const toml::array* arr = node.as_array();
+  if (!arr) throw std::invalid_argument(where + " must be an array of strings");
+  for (const toml::node& n : *arr) {
+    const std::optional<std::string> v = n.value<std::string>();
+    if (!v) throw std::invalid_argument(where + " must hold strings");
+    out.push_back(*v);
+  }
+  return out;
+}
+
+SweepGrid parse(const toml::table& t, const fs::path& path) {
+  SweepGrid g;
+  g.name = t["name"].value_or(path.stem().string());
+  for (std::string s : strings(t["scenes"], "scenes")) {
+    // Scene files are relative to the grid file; built-in names stay as they are.
+    if (s.ends_with(".toml") && fs::path(s).is_relative()) s = (path.parent_path() / s).string();
+    g.scenes.push_back(s);
+  }
+  if (g.scenes.empty()) throw std::invalid_argument("scenes must name at least one scene");
+  g.views = strings(t["views"], "views");
+  const toml::array* res = t["resolutions"].as_array();
+  if (!res || res->empty()) throw std::invalid_argument("resolutions must be [[w, h], ...]");
+  for (const toml::node& r : *res) {
+    const std::vector<int> wh = numbers<int>(toml::node_view<const toml::node>(r), "resolutions");
+    if (wh.size() != 2 || wh[0] < 16 || wh[1] < 16 || wh[0] > 8192 || wh[1] > 8192)
+      throw std::invalid_argument("each resolution must be [w, h] with sides 16..8192");
+    g.resolutions.emplace_back(wh[0], wh[1]);
+  }
+  g.runs = t["runs"].value_or(g.runs);
+  g.rays = t["rays"].value_or(g.rays);
+  g.unbounded = t["unbounded"].value_or(g.unbounded);
+  if (g.runs < 1 || g.runs > 100) throw std::invalid_argument("runs must be 1..100");
+  if (g.rays < 1 || g.rays > 65536) throw std::invalid_argument("rays must be 1..65536");
+  const toml::table* techniques = t["techniques"].as_table();
+  if (!techniques || techniques->empty())
+    throw std::invalid_argument("[techniques.NAME] tables are missing");
+  for (const auto& [name, node] : *techniques) {
+    const std::string where = fmt::format("techniques.{}", name.str());
+    const auto tv = toml::node_view<const toml::node>(node);
+    TechniqueGrid tg{renderer::parse_technique(name.str()),
+                     numbers<int>(tv["samples"], where + ".samples"),
+                     numbers<float>(tv["radius"], where + ".radius"),
+                     {}};
+    if (tv["intensity"]) tg.intensities = numbers<float>(tv["intensity"], where + ".intensity");
+    g.techniques.push_back(std::move(tg));
+  }
+  return g;
+}
+
+}  // namespace
+
+SweepGrid read_sweep_grid(const fs::path& path) {
+  const std::vector<unsigned char> bytes = read_file(path);
+  try {
+    const toml::table t = toml::parse(
+        std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), path.string());
+    return parse(t, path);
+  } catch (const toml::parse_error& e) {
+    throw FileError(fmt::format("{}:{}:{}: {}", path.string(), e.source().begin.line,
+                                e.source().begin.column, e.description()));
+  } catch (const std::invalid_argument& e) {
+    throw FileError(fmt::format("{}: {}", path.string(), e.what()));
+  }
+}
+
+}  // namespace aosuite::cli

@@ -1,0 +1,36 @@
+// The grid `aosuite sweep` runs: scenes (and views), resolutions, and per technique the
+// samples x radius (x intensity) values, read from a TOML file (suites/sweep_*.toml).
+#pragma once
+
+#include <filesystem>
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "renderer/technique.hpp"
+
+namespace aosuite::cli {
+
+struct TechniqueGrid {
+  renderer::Technique technique;
+  std::vector<int> samples;
+  std::vector<float> radii;
+  std::vector<float> intensities;  // empty: the technique's default
+};
+
+struct SweepGrid {
+  std::string name;
+  std::vector<std::string> scenes;  // built-in names or scene files (relative to the grid file)
+  std::vector<std::string> views;   // empty: every view of each scene
+  std::vector<std::pair<int, int>> resolutions;
+  int runs = 3;           // timed runs per configuration after one warm-up; the median is reported
+  int rays = 256;         // reference rays per pixel
+  bool unbounded = true;  // also measure against the unbounded reference
+  std::vector<TechniqueGrid> techniques;
+};
+
+// Throws aosuite::FileError naming the file, and the key at fault, for unreadable or bad input.
+SweepGrid read_sweep_grid(const std::filesystem::path& path);
+
+}  // namespace aosuite::cli

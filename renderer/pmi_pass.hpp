@@ -1,0 +1,20 @@
+// PMI's AO pass: the scene drawn with each vertex's PMI visibility (ground: 1), interpolated
+// across its triangles, into the AO target wherever the G-buffer saw that same surface.
+#pragma once
+
+#include "renderer/frame.hpp"
+#include "renderer/pmi_channel.hpp"
+
+namespace aosuite::renderer {
+
+class PmiPass {
+ public:
+  PmiPass();
+  // `out_fb` must carry the G-buffer's depth (as the Renderer's AO target does).
+  PassTime run(const Scene& scene, const PmiMaps& maps, const Camera& camera, GLuint out_fb) const;
+
+ private:
+  Program program_;
+};
+
+}  // namespace aosuite::renderer
