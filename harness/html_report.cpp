@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <xxhash.h>
 
+#include <chrono>
 #include <map>
 #include <string_view>
 
@@ -194,6 +195,28 @@ std::string case_section(const CaseResult& c, Pictures& pics) {
   return h;
 }
 
+// The latest `aosuite sweep` beside this report (its default output, reports/sweep, next to
+// reports/<suite>): linked, not embedded, since it is a separate run with its own date.
+std::string sweep_link(const fs::path& report_dir) {
+  const fs::path sweep = report_dir / ".." / "sweep";
+  std::error_code ec;
+  const auto when = fs::last_write_time(sweep / "sweep.md", ec);
+  if (ec) {
+    return "<p>No sweep next to this report yet: <code>aosuite sweep suites/sweep_ci.toml --out "
+           "reports/sweep</code> measures each technique's run time against its error.</p>\n";
+  }
+  const auto age =
+      std::chrono::duration_cast<std::chrono::hours>(fs::file_time_type::clock::now() - when);
+  std::string links =
+      "<a href=\"../sweep/sweep.md\">table</a>, <a href=\"../sweep/sweep.csv\">CSV</a>";
+  for (const fs::directory_entry& e : fs::directory_iterator(sweep, ec)) {
+    if (e.path().extension() != ".svg") continue;
+    const std::string name = escape_markup(e.path().filename().string());
+    links += fmt::format(", <a href=\"../sweep/{0}\">{0}</a>", name);
+  }
+  return fmt::format("<p>Latest sweep ({} h old): {}.</p>\n", age.count(), links);
+}
+
 }  // namespace
 
 void write_html_report(const RunResults& run, const fs::path& report_dir) {
@@ -208,6 +231,7 @@ void write_html_report(const RunResults& run, const fs::path& report_dir) {
       escape_markup(run.gl), escape_markup(run.platform));
   body += "<h2>Cases</h2>\n" + summary_table(run);
   body += "<h2>How much AO changes the image (thesis Tables 11–14)</h2>\n" + ao_effect_table(run);
+  body += "<h2>Run time against error</h2>\n" + sweep_link(report_dir);
   for (const CaseResult& c : run.cases) body += case_section(c, pics);
   const std::string page = fmt::format(
       "<!doctype html>\n<html lang=en><head><meta charset=utf-8><title>aosuite: {}</title>"

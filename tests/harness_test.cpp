@@ -6,6 +6,7 @@
 #include "compare/image_io.hpp"
 #include "harness/escape.hpp"
 #include "harness/goldens.hpp"
+#include "harness/html_report.hpp"
 #include "harness/judge.hpp"
 #include "harness/results.hpp"
 #include "harness/runner.hpp"
@@ -272,6 +273,24 @@ TEST(Results, RoundTripThroughJson) {
   EXPECT_EQ(to_json(back), to_json(r));
   EXPECT_EQ(back.cases[0].tolerance.mode, resemble::Mode::kAntialiasing);
   EXPECT_EQ(exit_code(count(back)), 1);
+}
+
+TEST(HtmlReport, LinksTheLatestSweepBesideIt) {
+  const test::TempDir dir;
+  RunResults r;
+  r.suite = "s";
+  write_html_report(r, dir.path() / "s");
+  auto page = [&] {
+    std::ifstream in(dir.path() / "s" / "index.html");
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  EXPECT_NE(page().find("No sweep next to this report"), std::string::npos);
+  fs::create_directories(dir.path() / "sweep");
+  std::ofstream(dir.path() / "sweep" / "sweep.md") << "| t |";
+  std::ofstream(dir.path() / "sweep" / "sweep_320x180.svg") << "<svg/>";
+  write_html_report(r, dir.path() / "s");
+  EXPECT_NE(page().find("href=\"../sweep/sweep.md\""), std::string::npos);
+  EXPECT_NE(page().find("href=\"../sweep/sweep_320x180.svg\""), std::string::npos);
 }
 
 TEST(Escape, MarkupCharactersAreEscaped) {
