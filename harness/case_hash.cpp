@@ -2,12 +2,10 @@
 
 #include <dlfcn.h>
 #include <fmt/format.h>
-#include <xxhash.h>
 
-#include <memory>
 #include <span>
 
-#include "compare/image_io.hpp"
+#include "renderer/content_hash.hpp"
 #include "renderer/shader_library.hpp"
 
 namespace aosuite::harness {
@@ -15,32 +13,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class Hasher {
- public:
-  Hasher() : state_(XXH3_createState(), XXH3_freeState) { XXH3_64bits_reset(state_.get()); }
-  template <typename T>
-  Hasher& add(std::span<const T> v) {
-    add_size(v.size());
-    XXH3_64bits_update(state_.get(), v.data(), v.size_bytes());
-    return *this;
-  }
-  Hasher& add(std::string_view s) { return add(std::span<const char>(s.data(), s.size())); }
-  template <typename T>
-  requires std::is_trivially_copyable_v<T> Hasher& add(const T& v) {
-    XXH3_64bits_update(state_.get(), &v, sizeof v);
-    return *this;
-  }
-  Hasher& add_file(const fs::path& p) {
-    add(p.filename().string());
-    const std::vector<unsigned char> bytes = read_file(p);
-    return add(std::span<const unsigned char>(bytes));
-  }
-  std::string hex() const { return fmt::format("{:016x}", XXH3_64bits_digest(state_.get())); }
-
- private:
-  void add_size(std::size_t n) { XXH3_64bits_update(state_.get(), &n, sizeof n); }
-  std::unique_ptr<XXH3_state_t, XXH_errorcode (*)(XXH3_state_t*)> state_;
-};
+using Hasher = ContentHash;
 
 // The build of the code that renders: a rebuilt renderer invalidates every cached render.
 const std::string& build_hash() {

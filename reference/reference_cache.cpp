@@ -1,51 +1,25 @@
 #include "reference/reference_cache.hpp"
 
 #include <fmt/format.h>
-#include <xxhash.h>
 
 #include <chrono>
 #include <cstdlib>
 #include <cstring>
 
 #include "compare/image_io.hpp"
+#include "renderer/content_hash.hpp"
 
 namespace aosuite::reference {
 namespace {
 
 namespace fs = std::filesystem;
 
-class Hasher {
- public:
-  Hasher() : state_(XXH3_createState(), XXH3_freeState) { XXH3_64bits_reset(state_.get()); }
-  Hasher& bytes(const void* data, std::size_t n) {
-    XXH3_64bits_update(state_.get(), &n, sizeof n);  // length-prefixed: no ambiguous joins
-    XXH3_64bits_update(state_.get(), data, n);
-    return *this;
-  }
-  template <typename T>
-  Hasher& value(const T& v) {
-    return bytes(&v, sizeof v);
-  }
-  Hasher& mat(const cv::Mat& m) {
-    const int header[3] = {m.rows, m.cols, m.type()};
-    value(header);
-    const cv::Mat c = m.isContinuous() ? m : m.clone();
-    return bytes(c.data, c.total() * c.elemSize());
-  }
-  std::uint64_t digest() const { return XXH3_64bits_digest(state_.get()); }
-
- private:
-  std::unique_ptr<XXH3_state_t, XXH_errorcode (*)(XXH3_state_t*)> state_;
-};
-
 // Positions and triangles only: colours do not change visibility, and normals enter through
 // the G-buffer's normal image.
 std::uint64_t geometry_hash(const renderer::Scene& scene) {
-  Hasher h;
-  for (const renderer::Mesh& m : scene.meshes) {
-    h.bytes(m.positions.data(), m.positions.size() * sizeof(glm::vec3));
-    h.bytes(m.triangles.data(), m.triangles.size() * sizeof(glm::uvec3));
-  }
+  ContentHash h;
+  for (const renderer::Mesh& m : scene.meshes)
+    h.add(std::span(m.positions)).add(std::span(m.triangles));
   return h.digest();
 }
 
@@ -91,13 +65,13 @@ ReferenceCache::~ReferenceCache() = default;
 
 std::string ReferenceCache::key(const renderer::Camera& camera, const cv::Mat& depth,
                                 const cv::Mat& normal, const ReferenceSettings& s) const {
-  Hasher h;
-  h.value(kReferenceVersion).value(scene_hash_);
-  h.value(camera.width).value(camera.height).value(camera.view).value(camera.ndc_to_view);
-  h.mat(depth).mat(normal);
+  ContentHash h;
+  h.add(kReferenceVersion).add(scene_hash_);
+  h.add(camera.width).add(camera.height).add(camera.view).add(camera.ndc_to_view);
+  h.add(depth).add(normal);
   const float radius = s.variant == Variant::kUnbounded ? 0.0f : s.radius;
-  h.value(s.rays).value(radius).value(static_cast<int>(s.variant));
-  return fmt::format("{:016x}", h.digest());
+  h.add(s.rays).add(radius).add(static_cast<int>(s.variant));
+  return h.hex();
 }
 
 cv::Mat ReferenceCache::get(const renderer::Camera& camera, const cv::Mat& depth,

@@ -1,27 +1,23 @@
 #include "renderer/pmi_cache.hpp"
 
-#include <xxhash.h>
-
 #include <algorithm>
+
+#include "renderer/content_hash.hpp"
 
 namespace aosuite::renderer {
 
 std::uint64_t pmi_content_hash(const Scene& scene, const PmiSettings& s) {
-  XXH3_state_t* state = XXH3_createState();
-  XXH3_64bits_reset(state);
-  auto add = [&](const void* data, std::size_t bytes) { XXH3_64bits_update(state, data, bytes); };
+  ContentHash h;
   for (const Mesh& m : scene.meshes) {
-    const std::size_t sizes[2] = {m.positions.size(), m.triangles.size()};
-    add(sizes, sizeof sizes);
-    add(m.positions.data(), m.positions.size() * sizeof(glm::vec3));
-    add(m.triangles.data(), m.triangles.size() * sizeof(glm::uvec3));
-    add(&m.ground, sizeof m.ground);
+    h.add(std::span(m.positions)).add(std::span(m.triangles)).add(m.ground);
   }
-  const int fields[6] = {s.viewpoints, s.width, s.height, s.importance_best, s.per_view, s.colour};
-  add(fields, sizeof fields);
-  const std::uint64_t hash = XXH3_64bits_digest(state);
-  XXH3_freeState(state);
-  return hash;
+  h.add(s.viewpoints)
+      .add(s.width)
+      .add(s.height)
+      .add(s.importance_best)
+      .add(s.per_view)
+      .add(s.colour);
+  return h.digest();
 }
 
 std::shared_ptr<const PmiMaps> PmiCache::get(const Scene& scene, const PmiSettings& settings) {

@@ -1,0 +1,56 @@
+// An xxh3 hash of content, for the caches keyed by their inputs (harness renders, ray-traced
+// references, PMI maps). Spans and strings are length-prefixed, so "ab"+"c" and "a"+"bc" differ.
+#pragma once
+
+#include <fmt/format.h>
+#include <xxhash.h>
+
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <opencv2/core.hpp>
+#include <span>
+#include <string>
+#include <string_view>
+#include <type_traits>
+
+#include "compare/image_io.hpp"
+
+namespace aosuite {
+
+class ContentHash {
+ public:
+  ContentHash() : state_(XXH3_createState(), XXH3_freeState) { XXH3_64bits_reset(state_.get()); }
+
+  template <typename T>
+  ContentHash& add(std::span<const T> v) {
+    add(v.size());
+    XXH3_64bits_update(state_.get(), v.data(), v.size_bytes());
+    return *this;
+  }
+  ContentHash& add(std::string_view s) { return add(std::span<const char>(s.data(), s.size())); }
+  template <typename T>
+  requires std::is_trivially_copyable_v<T> ContentHash& add(const T& v) {
+    XXH3_64bits_update(state_.get(), &v, sizeof v);
+    return *this;
+  }
+  ContentHash& add(const cv::Mat& m) {
+    add(m.rows).add(m.cols).add(m.type());
+    const cv::Mat c = m.isContinuous() ? m : m.clone();
+    return add(std::span<const unsigned char>(c.data, c.total() * c.elemSize()));
+  }
+  // The file's name and bytes; throws FileError if it cannot be read.
+  ContentHash& add_file(const std::filesystem::path& p) {
+    add(p.filename().string());
+    const std::vector<unsigned char> bytes = read_file(p);
+    return add(std::span<const unsigned char>(bytes));
+  }
+
+  std::uint64_t digest() const { return XXH3_64bits_digest(state_.get()); }
+  std::string hex() const { return fmt::format("{:016x}", digest()); }
+
+ private:
+  std::unique_ptr<XXH3_state_t, XXH_errorcode (*)(XXH3_state_t*)> state_;
+};
+
+}  // namespace aosuite
