@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/type_ptr.hpp>
 
 namespace aosuite::renderer {
 namespace {
@@ -49,6 +50,13 @@ void set_camera_uniforms(GLuint program, const Camera& camera) {
   glProgramUniform2f(program, glGetUniformLocation(program, "u_ndc_to_view"), camera.ndc_to_view.x,
                      camera.ndc_to_view.y);
   glProgramUniform1f(program, glGetUniformLocation(program, "u_proj_scale"), camera.proj_scale);
+}
+
+void set_view_projection(GLuint program, const Camera& camera) {
+  glProgramUniformMatrix4fv(program, glGetUniformLocation(program, "u_view"), 1, GL_FALSE,
+                            glm::value_ptr(camera.view));
+  glProgramUniformMatrix4fv(program, glGetUniformLocation(program, "u_projection"), 1, GL_FALSE,
+                            glm::value_ptr(camera.projection));
 }
 
 namespace {

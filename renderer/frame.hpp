@@ -40,6 +40,8 @@ GBuffer make_gbuffer(int width, int height);
 
 // Sets u_ndc_to_view and u_proj_scale on `program` (each is skipped if the program lacks it).
 void set_camera_uniforms(GLuint program, const Camera& camera);
+// u_view and u_projection, for the passes that rasterise the scene's triangles.
+void set_view_projection(GLuint program, const Camera& camera);
 
 // Binds `textures` to units 0..n-1 and the sampler uniforms named alongside them, and makes
 // `program` current.

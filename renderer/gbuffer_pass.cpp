@@ -1,7 +1,6 @@
 #include "renderer/gbuffer_pass.hpp"
 
 #include <cmath>
-#include <glm/gtc/type_ptr.hpp>
 #include <vector>
 
 namespace aosuite::renderer {
@@ -54,10 +53,7 @@ void GBufferPass::run(const GpuScene& scene, const Camera& camera, const GBuffer
   glDisable(GL_CULL_FACE);  // two-sided: cameras inside geometry still see surfaces
   const GLuint p = program_.get();
   glUseProgram(p);
-  glProgramUniformMatrix4fv(p, glGetUniformLocation(p, "u_view"), 1, GL_FALSE,
-                            glm::value_ptr(camera.view));
-  glProgramUniformMatrix4fv(p, glGetUniformLocation(p, "u_projection"), 1, GL_FALSE,
-                            glm::value_ptr(camera.projection));
+  set_view_projection(p, camera);
   scene.draw();
   check_gl("G-buffer pass");
 }

@@ -1,6 +1,5 @@
 #include "renderer/pmi_pass.hpp"
 
-#include <glm/gtc/type_ptr.hpp>
 #include <stdexcept>
 #include <vector>
 
@@ -53,10 +52,7 @@ PassTime PmiPass::run(const Scene& scene, const PmiMaps& maps, const Camera& cam
   glDisable(GL_CULL_FACE);
   const GLuint p = program_.get();
   glUseProgram(p);
-  glProgramUniformMatrix4fv(p, glGetUniformLocation(p, "u_view"), 1, GL_FALSE,
-                            glm::value_ptr(camera.view));
-  glProgramUniformMatrix4fv(p, glGetUniformLocation(p, "u_projection"), 1, GL_FALSE,
-                            glm::value_ptr(camera.projection));
+  set_view_projection(p, camera);
   mesh.draw();
   check_gl("PMI pass");
   return timer.finish();
