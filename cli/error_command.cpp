@@ -23,10 +23,9 @@ namespace rd = aosuite::renderer;
 namespace ref = aosuite::reference;
 
 struct ErrorArgs {
-  std::string scene = "village", view, technique = "alchemy", variant = "ao", out;
-  int width = 1920, height = 1080, rays = 256;
-  std::optional<std::string> samples, radius;
-  std::vector<std::string> params;
+  CaseOptions c;  // --radius is the reference's radius too
+  std::string variant = "ao", out;
+  int rays = 256;
   bool json = false;
 };
 
@@ -64,12 +63,9 @@ void print_stats(const char* name, const ref::ErrorStats& s) {
 }
 
 int run_error(const ErrorArgs& a) {
-  const rd::Scene scene = rd::load_scene(a.scene);
-  const rd::View& view = rd::find_view(scene, a.view);
-  rd::RenderSettings s;
-  s.width = a.width, s.height = a.height;
-  s.technique = rd::parse_technique(a.technique);
-  s.params = technique_params(s.technique, a.samples, a.radius, a.params);
+  const rd::Scene scene = rd::load_scene(a.c.scene);
+  const rd::View& view = rd::find_view(scene, a.c.view);
+  rd::RenderSettings s = case_settings(a.c);
   s.outputs = rd::parse_outputs("ao_float");
   s.outputs.normal = true;
   const ref::ReferenceSettings rs{a.rays, s.params.radius, ref::parse_variant(a.variant)};
@@ -82,7 +78,7 @@ int run_error(const ErrorArgs& a) {
   const cv::Mat reference = cache.get(camera, img.depth, img.normal, rs);
   const ref::ErrorReport r = ref::measure_error(img.ao, reference, img.depth, {8, 0.05f, rs.rays});
 
-  const std::string stem = fmt::format("{}_{}_{}", scene.name, view.name, a.technique);
+  const std::string stem = fmt::format("{}_{}_{}", scene.name, view.name, a.c.technique);
   if (!a.out.empty()) {
     const fs::path dir(a.out);
     fs::create_directories(dir);
@@ -93,7 +89,7 @@ int run_error(const ErrorArgs& a) {
   }
   if (a.json) {
     nlohmann::ordered_json j;
-    j["scene"] = scene.name, j["view"] = view.name, j["technique"] = a.technique;
+    j["scene"] = scene.name, j["view"] = view.name, j["technique"] = a.c.technique;
     j["width"] = s.width, j["height"] = s.height;
     j["samples"] = s.params.samples, j["radius"] = s.params.radius;
     j["intensity"] = s.params.intensity;
@@ -124,15 +120,7 @@ void add_error_command(CLI::App& app, int& rc) {
   auto a = std::make_shared<ErrorArgs>();
   CLI::App* cmd =
       app.add_subcommand("error", "Measure a technique's AO against a ray-traced reference");
-  cmd->add_option("--scene", a->scene, "built-in scene name or scene file (.toml)")
-      ->capture_default_str();
-  cmd->add_option("--view", a->view, "view name or index (default: the first)");
-  cmd->add_option("--technique", a->technique, "alchemy|sao|mssao|ue4")->capture_default_str();
-  cmd->add_option("--width", a->width)->capture_default_str();
-  cmd->add_option("--height", a->height)->capture_default_str();
-  cmd->add_option("--samples", a->samples, "samples per pixel (default: the technique's)");
-  cmd->add_option("--radius", a->radius, "radius in scene units (the reference uses it too)");
-  cmd->add_option("--param", a->params, "KEY=VALUE, repeatable (as for render)");
+  add_case_options(cmd, a->c);
   cmd->add_option("--rays", a->rays, "reference rays per pixel")->capture_default_str();
   cmd->add_option("--variant", a->variant, "reference: ao|obscurance|unbounded")
       ->capture_default_str();

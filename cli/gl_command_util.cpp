@@ -2,6 +2,7 @@
 
 #include <OpenImageIO/imageio.h>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 
@@ -26,6 +27,30 @@ rd::AoParams technique_params(rd::Technique t, const std::optional<std::string>&
     rd::set_param(p, kv.substr(0, eq), kv.substr(eq + 1));
   }
   return p;
+}
+
+void add_case_options(CLI::App* cmd, CaseOptions& o) {
+  cmd->add_option("--scene", o.scene,
+                  "built-in scene name or scene file (.toml); `aosuite scenes` lists them")
+      ->capture_default_str();
+  cmd->add_option("--view", o.view, "view name or index (default: the first)");
+  cmd->add_option("--technique", o.technique, "alchemy|sao|mssao|ue4|pmi")->capture_default_str();
+  cmd->add_option("--width", o.width)->capture_default_str();
+  cmd->add_option("--height", o.height)->capture_default_str();
+  cmd->add_option("--samples", o.samples, "samples per pixel (default: the technique's)");
+  cmd->add_option("--radius", o.radius, "radius in scene units");
+  cmd->add_option("--param", o.params,
+                  fmt::format("KEY=VALUE, repeatable; keys: {} (blur: none|gaussian|bilateral; "
+                              "level_weights: five comma-separated MSSAO intensities)",
+                              fmt::join(rd::param_names(), ", ")));
+}
+
+rd::RenderSettings case_settings(const CaseOptions& o) {
+  rd::RenderSettings s;
+  s.width = o.width, s.height = o.height;
+  s.technique = rd::parse_technique(o.technique);
+  s.params = technique_params(s.technique, o.samples, o.radius, o.params);
+  return s;
 }
 
 void write_exr(const fs::path& path, const cv::Mat& image) {

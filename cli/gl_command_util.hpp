@@ -2,6 +2,7 @@
 // medians of timed runs, and error metrics as JSON.
 #pragma once
 
+#include <CLI/CLI.hpp>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
@@ -10,9 +11,23 @@
 #include <vector>
 
 #include "reference/error_metrics.hpp"
+#include "renderer/renderer.hpp"
 #include "renderer/technique.hpp"
 
 namespace aosuite::cli {
+
+// What `render` and `error` both take: which case to draw and with which parameters.
+struct CaseOptions {
+  std::string scene = "village", view, technique = "alchemy";
+  int width = 1920, height = 1080;
+  std::optional<std::string> samples, radius;
+  std::vector<std::string> params;  // KEY=VALUE
+};
+// --scene, --view, --technique, --width, --height, --samples, --radius, --param.
+void add_case_options(CLI::App* cmd, CaseOptions& o);
+// The render settings they name (all outputs, as RenderSettings defaults); throws
+// std::invalid_argument for an unknown technique or a bad parameter.
+renderer::RenderSettings case_settings(const CaseOptions& o);
 
 // The technique's defaults, then --samples, --radius and each --param KEY=VALUE in order.
 // Throws std::invalid_argument for a malformed pair or a bad value.

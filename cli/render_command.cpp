@@ -1,7 +1,6 @@
 // `aosuite render`: one scene view through one technique; writes the no-AO, with-AO and
 // AO-only PNGs, the AO term as float EXR, and a JSON of parameters and per-pass times.
 #include <fmt/format.h>
-#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <filesystem>
@@ -21,20 +20,15 @@ namespace fs = std::filesystem;
 namespace rd = aosuite::renderer;
 
 struct RenderArgs {
-  std::string scene = "village", view, technique = "alchemy", out = "reports/render",
-              outputs = "all";
-  int width = 1920, height = 1080, runs = 1;
-  std::optional<std::string> samples, radius;
-  std::vector<std::string> params;  // key=value
+  CaseOptions c;
+  std::string out = "reports/render", outputs = "all";
+  int runs = 1;
 };
 
 int run_render(const RenderArgs& a) {
-  rd::Scene scene = rd::load_scene(a.scene);
-  const rd::View& view = rd::find_view(scene, a.view);
-  rd::RenderSettings s;
-  s.width = a.width, s.height = a.height;
-  s.technique = rd::parse_technique(a.technique);
-  s.params = technique_params(s.technique, a.samples, a.radius, a.params);
+  rd::Scene scene = rd::load_scene(a.c.scene);
+  const rd::View& view = rd::find_view(scene, a.c.view);
+  rd::RenderSettings s = case_settings(a.c);
   s.outputs = rd::parse_outputs(a.outputs);
 
   rd::Renderer renderer;
@@ -49,7 +43,7 @@ int run_render(const RenderArgs& a) {
     }
   }
   fs::create_directories(a.out);
-  const std::string stem = fmt::format("{}_{}_{}", scene.name, view.name, a.technique);
+  const std::string stem = fmt::format("{}_{}_{}", scene.name, view.name, a.c.technique);
   const fs::path dir(a.out);
   if (!img.no_ao.empty()) write_png_rgba8(dir / (stem + "_no_ao.png"), img.no_ao);
   if (!img.with_ao.empty()) write_png_rgba8(dir / (stem + "_with_ao.png"), img.with_ao);
@@ -57,7 +51,7 @@ int run_render(const RenderArgs& a) {
   if (!img.ao.empty()) write_exr(dir / (stem + "_ao.exr"), img.ao);
 
   nlohmann::ordered_json j;
-  j["scene"] = scene.name, j["view"] = view.name, j["technique"] = a.technique;
+  j["scene"] = scene.name, j["view"] = view.name, j["technique"] = a.c.technique;
   j["width"] = s.width, j["height"] = s.height;
   j["params"] = {{"samples", s.params.samples},
                  {"radius", s.params.radius},
@@ -126,19 +120,7 @@ void add_scenes_command(CLI::App& app, int& rc) {
 void add_render_command(CLI::App& app, int& rc) {
   auto a = std::make_shared<RenderArgs>();
   CLI::App* cmd = app.add_subcommand("render", "Render a scene view with one AO technique");
-  cmd->add_option("--scene", a->scene,
-                  "built-in scene name or scene file (.toml); `aosuite scenes` lists them")
-      ->capture_default_str();
-  cmd->add_option("--view", a->view, "view name or index (default: the first)");
-  cmd->add_option("--technique", a->technique, "alchemy|sao|mssao|ue4|pmi")->capture_default_str();
-  cmd->add_option("--width", a->width)->capture_default_str();
-  cmd->add_option("--height", a->height)->capture_default_str();
-  cmd->add_option("--samples", a->samples, "samples per pixel (default: the technique's)");
-  cmd->add_option("--radius", a->radius, "radius in scene units");
-  cmd->add_option("--param", a->params,
-                  fmt::format("KEY=VALUE, repeatable; keys: {} (blur: none|gaussian|bilateral; "
-                              "level_weights: five comma-separated MSSAO intensities)",
-                              fmt::join(rd::param_names(), ", ")));
+  add_case_options(cmd, a->c);
   cmd->add_option("--outputs", a->outputs, "all, or a list of no_ao,with_ao,ao_only,ao_float")
       ->capture_default_str();
   cmd->add_option("--runs", a->runs, "timed runs after one warm-up (median reported)")
