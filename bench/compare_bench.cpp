@@ -6,8 +6,8 @@
 #include <opencv2/core/utility.hpp>
 
 #include "compare/count_kernel.hpp"
-#include "compare/image_io.hpp"
-#include "compare/resemble.hpp"
+#include "compare/opencv.hpp"
+#include "compare/parallel_rows.hpp"
 
 namespace {
 
@@ -66,15 +66,12 @@ void BM_ReadBothBaseline(benchmark::State& state) {
   const std::size_t row_words = std::size_t(a.cols) / 2;
   for (auto _ : state) {
     std::atomic<std::uint64_t> total{0};
-    cv::parallel_for_(
-        cv::Range(0, rows),
-        [&](const cv::Range& r) {
-          std::uint64_t acc = 0;
-          for (std::size_t i = r.start * row_words; i < r.end * row_words; ++i)
-            acc |= pa[i] ^ pb[i];
-          total |= acc;
-        },
-        std::max(1.0, double(a.total()) / (1 << 18)));
+    aosuite::parallel_rows(a.cols, rows, [&](int y0, int y1) {
+      std::uint64_t acc = 0;
+      for (std::size_t i = std::size_t(y0) * row_words; i < std::size_t(y1) * row_words; ++i)
+        acc |= pa[i] ^ pb[i];
+      total |= acc;
+    });
     benchmark::DoNotOptimize(total.load());
   }
   set_pixels(state, a);

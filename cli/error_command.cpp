@@ -10,7 +10,7 @@
 
 #include "cli/commands.hpp"
 #include "cli/gl_command_util.hpp"
-#include "compare/image_io.hpp"
+#include "compare/opencv.hpp"
 #include "reference/reference_cache.hpp"
 #include "renderer/renderer.hpp"
 #include "renderer/scene_file.hpp"

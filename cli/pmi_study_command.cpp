@@ -19,7 +19,7 @@
 
 #include "cli/commands.hpp"
 #include "cli/pmi_vertex_ao.hpp"
-#include "compare/image_io.hpp"
+#include "compare/opencv.hpp"
 #include "renderer/renderer.hpp"
 #include "renderer/scene_file.hpp"
 

@@ -8,7 +8,7 @@
 
 #include "cli/commands.hpp"
 #include "cli/gl_command_util.hpp"
-#include "compare/image_io.hpp"
+#include "compare/opencv.hpp"
 #include "renderer/renderer.hpp"
 #include "renderer/scene.hpp"
 #include "renderer/scene_file.hpp"

@@ -10,7 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.hpp"
-#include "compare/image_io.hpp"
+#include "compare/opencv.hpp"
 #include "renderer/renderer.hpp"
 #include "renderer/scene_file.hpp"
 #include "renderer/viewpoint_sphere.hpp"

@@ -53,12 +53,12 @@ const Table& table() {
   return t;
 }
 
-void apply_table(cv::Mat& rgba, const Table& t) {
-  CV_Assert(rgba.type() == CV_8UC4);
-  rgba.forEach<cv::Vec4b>([&t](cv::Vec4b& px, const int*) {
-    const std::size_t row = std::size_t{px[3]} * 256;
-    for (int c = 0; c < 3; ++c) px[c] = t[row + px[c]];
-  });
+void apply_table(RgbaImage& rgba, const Table& t) {
+  unsigned char* px = rgba.data();
+  for (std::size_t i = 0, n = rgba.view().bytes(); i < n; i += 4) {
+    const std::size_t row = std::size_t{px[i + 3]} * 256;
+    for (std::size_t c = 0; c < 3; ++c) px[i + c] = t[row + px[i + c]];
+  }
 }
 
 }  // namespace
@@ -71,12 +71,12 @@ CanvasAlpha parse_canvas_alpha(std::string_view name) {
                               "' (expected none, chromium or node-canvas)");
 }
 
-void apply_canvas_decode(cv::Mat& rgba, CanvasAlpha model) {
+void apply_canvas_decode(RgbaImage& rgba, CanvasAlpha model) {
   if (model == CanvasAlpha::kChromium) apply_table(rgba, table<chromium_round_trip>());
   if (model == CanvasAlpha::kNodeCanvas) apply_table(rgba, table<node_decode_round_trip>());
 }
 
-void apply_canvas_put_get(cv::Mat& rgba, CanvasAlpha model) {
+void apply_canvas_put_get(RgbaImage& rgba, CanvasAlpha model) {
   if (model == CanvasAlpha::kNodeCanvas) apply_table(rgba, table<node_put_get>());
 }
 

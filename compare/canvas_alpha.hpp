@@ -4,8 +4,9 @@
 // ../shared/oracle (see its README, "Caveats").
 #pragma once
 
-#include <opencv2/core.hpp>
 #include <string_view>
+
+#include "compare/rgba_image.hpp"
 
 namespace aosuite {
 
@@ -17,11 +18,11 @@ enum class CanvasAlpha {
 
 CanvasAlpha parse_canvas_alpha(std::string_view name);  // throws std::invalid_argument
 
-// The drawImage + getImageData round trip, in place on CV_8UC4.
-void apply_canvas_decode(cv::Mat& rgba, CanvasAlpha model);
+// The drawImage + getImageData round trip, in place.
+void apply_canvas_decode(RgbaImage& rgba, CanvasAlpha model);
 
 // node-canvas's extra putImageData + getImageData round trip that Resemble's normalise()
 // applies to images padded to a common size. The identity in Chromium.
-void apply_canvas_put_get(cv::Mat& rgba, CanvasAlpha model);
+void apply_canvas_put_get(RgbaImage& rgba, CanvasAlpha model);
 
 }  // namespace aosuite

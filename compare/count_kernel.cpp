@@ -5,7 +5,8 @@
 #include <algorithm>
 #include <cstring>
 #include <mutex>
-#include <opencv2/core/utility.hpp>
+
+#include "compare/parallel_rows.hpp"
 
 namespace aosuite {
 namespace {
@@ -94,15 +95,11 @@ MismatchTally count_mismatches(const unsigned char* a, const unsigned char* b, i
                                int height, const std::array<int, 4>& min_delta) {
   MismatchTally total;
   std::mutex m;
-  const double pixels = double(width) * height;
-  cv::parallel_for_(
-      cv::Range(0, height),
-      [&](const cv::Range& r) {
-        const MismatchTally t = count_rows(a, b, width, r.start, r.end, min_delta.data());
-        std::lock_guard lock(m);
-        total.merge(t);
-      },
-      std::max(1.0, pixels / (1 << 18)));
+  parallel_rows(width, height, [&](int y0, int y1) {
+    const MismatchTally t = count_rows(a, b, width, y0, y1, min_delta.data());
+    std::lock_guard lock(m);
+    total.merge(t);
+  });
   return total;
 }
 

@@ -35,6 +35,13 @@ struct Fd {
   }
 };
 
+void check_signature(std::span<const unsigned char> png, const std::string& name) {
+  if (png.size() < sizeof kPngSignature ||
+      std::memcmp(png.data(), kPngSignature, sizeof kPngSignature) != 0) {
+    throw FileError(fmt::format("{}: not a PNG file", name));
+  }
+}
+
 }  // namespace
 
 std::vector<unsigned char> read_file(const std::filesystem::path& path) {
@@ -110,11 +117,8 @@ void write_file_atomic(const std::filesystem::path& path, std::span<const unsign
   if (::rename(tmp.c_str(), path.c_str()) != 0) abandon("cannot rename into place");
 }
 
-cv::Mat decode_png_rgba8(std::span<const unsigned char> png, const std::string& name) {
-  if (png.size() < sizeof kPngSignature ||
-      std::memcmp(png.data(), kPngSignature, sizeof kPngSignature) != 0) {
-    throw FileError(fmt::format("{}: not a PNG file", name));
-  }
+RgbaImage decode_png(std::span<const unsigned char> png, const std::string& name) {
+  check_signature(png, name);
   if (auto fast = decode_png_fast(png, name)) return *std::move(fast);
   SpngCtx ctx(spng_ctx_new(0));
   if (!ctx) throw FileError(fmt::format("{}: out of memory", name));
@@ -136,18 +140,24 @@ cv::Mat decode_png_rgba8(std::span<const unsigned char> png, const std::string& 
   }
   std::size_t size = 0;
   check(spng_decoded_image_size(ctx.get(), SPNG_FMT_RGBA8, &size), "cannot decode");
-  cv::Mat rgba(static_cast<int>(ihdr.height), static_cast<int>(ihdr.width), CV_8UC4);
-  check(spng_decode_image(ctx.get(), rgba.data, size, SPNG_FMT_RGBA8, SPNG_DECODE_TRNS),
+  RgbaImage rgba(static_cast<int>(ihdr.width), static_cast<int>(ihdr.height));
+  check(spng_decode_image(ctx.get(), rgba.data(), size, SPNG_FMT_RGBA8, SPNG_DECODE_TRNS),
         "cannot decode");
   return rgba;
 }
 
-cv::Mat read_png_rgba8(const std::filesystem::path& path) {
-  return decode_png_rgba8(MappedFile(path).bytes(), path.string());
+ImageSize check_png(std::span<const unsigned char> png, const std::string& name) {
+  check_signature(png, name);
+  if (const auto size = check_png_fast(png, name)) return *size;
+  const RgbaImage img = decode_png(png, name);
+  return {img.width(), img.height()};
 }
 
-std::vector<unsigned char> encode_png_rgba8(const cv::Mat& rgba, int compression_level) {
-  CV_Assert(rgba.type() == CV_8UC4 && rgba.isContinuous());
+RgbaImage read_png(const std::filesystem::path& path) {
+  return decode_png(MappedFile(path).bytes(), path.string());
+}
+
+std::vector<unsigned char> encode_png_rgba8(RgbaView rgba, int compression_level) {
   SpngCtx ctx(spng_ctx_new(SPNG_CTX_ENCODER));
   if (!ctx) throw FileError("PNG encoder: out of memory");
   spng_set_option(ctx.get(), SPNG_ENCODE_TO_BUFFER, 1);
@@ -155,14 +165,13 @@ std::vector<unsigned char> encode_png_rgba8(const cv::Mat& rgba, int compression
   // Trying all five filters per row costs ~40 % of encode time for little size on renders.
   spng_set_option(ctx.get(), SPNG_FILTER_CHOICE, SPNG_FILTER_CHOICE_SUB | SPNG_FILTER_CHOICE_UP);
   spng_ihdr ihdr{};
-  ihdr.width = static_cast<std::uint32_t>(rgba.cols);
-  ihdr.height = static_cast<std::uint32_t>(rgba.rows);
+  ihdr.width = static_cast<std::uint32_t>(rgba.width);
+  ihdr.height = static_cast<std::uint32_t>(rgba.height);
   ihdr.bit_depth = 8;
   ihdr.color_type = SPNG_COLOR_TYPE_TRUECOLOR_ALPHA;
   int rc = spng_set_ihdr(ctx.get(), &ihdr);
   if (rc == 0) {
-    rc = spng_encode_image(ctx.get(), rgba.data, rgba.total() * 4, SPNG_FMT_PNG,
-                           SPNG_ENCODE_FINALIZE);
+    rc = spng_encode_image(ctx.get(), rgba.data, rgba.bytes(), SPNG_FMT_PNG, SPNG_ENCODE_FINALIZE);
   }
   std::size_t len = 0;
   std::unique_ptr<void, decltype(&std::free)> buf(
@@ -172,8 +181,7 @@ std::vector<unsigned char> encode_png_rgba8(const cv::Mat& rgba, int compression
   return {p, p + len};
 }
 
-void write_png_rgba8(const std::filesystem::path& path, const cv::Mat& rgba,
-                     int compression_level) {
+void write_png_rgba8(const std::filesystem::path& path, RgbaView rgba, int compression_level) {
   write_file_atomic(path, encode_png_rgba8(rgba, compression_level));
 }
 

@@ -4,10 +4,11 @@
 
 #include <cstdint>
 #include <filesystem>
-#include <opencv2/core.hpp>
 #include <span>
 #include <stdexcept>
 #include <vector>
+
+#include "compare/rgba_image.hpp"
 
 namespace aosuite {
 
@@ -43,14 +44,17 @@ class MappedFile {
 // the old file or the complete new one.
 void write_file_atomic(const std::filesystem::path& path, std::span<const unsigned char> bytes);
 
-// Decodes any PNG (grey, palette, 16-bit, tRNS, ...) to CV_8UC4 RGBA. No gamma or colour
-// management is applied. `name` is only used in error messages.
-cv::Mat decode_png_rgba8(std::span<const unsigned char> png, const std::string& name);
-cv::Mat read_png_rgba8(const std::filesystem::path& path);
+// Decodes any PNG (grey, palette, 16-bit, tRNS, ...) to RGBA8. No gamma or colour
+// management is applied. `name` is only used in error messages. (compare/opencv.hpp has
+// the cv::Mat forms.)
+RgbaImage decode_png(std::span<const unsigned char> png, const std::string& name);
+RgbaImage read_png(const std::filesystem::path& path);
+// Checks that the PNG decodes, as decode_png would, and returns its size; for the common
+// 8-bit RGB(A) kind it skips unfiltering the pixels nobody will look at.
+ImageSize check_png(std::span<const unsigned char> png, const std::string& name);
 
-std::vector<unsigned char> encode_png_rgba8(const cv::Mat& rgba, int compression_level);
+std::vector<unsigned char> encode_png_rgba8(RgbaView rgba, int compression_level);
 // compression_level 1..9 (zlib); 3 is the usual speed/size knee for diff images.
-void write_png_rgba8(const std::filesystem::path& path, const cv::Mat& rgba,
-                     int compression_level = 3);
+void write_png_rgba8(const std::filesystem::path& path, RgbaView rgba, int compression_level = 3);
 
 }  // namespace aosuite

@@ -3,7 +3,6 @@
 #include <emmintrin.h>
 #include <fmt/format.h>
 #include <libdeflate.h>
-#include <sys/mman.h>
 
 #include <cstdint>
 #include <cstring>
@@ -28,7 +27,8 @@ int paeth(int a, int b, int c) {
 
 // Paeth for 4-byte pixels, a pixel at a time in SSE2 16-bit lanes (the approach of libpng's
 // filter_sse2_intrinsics.c): the scalar loop's per-byte branches made it the slowest filter.
-void unpaeth4(unsigned char* row, const unsigned char* prev, std::size_t len) {
+void unpaeth4(const unsigned char* src, unsigned char* dst, const unsigned char* prev,
+              std::size_t len) {
   const __m128i zero = _mm_setzero_si128();
   auto load4 = [&](const unsigned char* p) {
     std::int32_t v;
@@ -46,42 +46,60 @@ void unpaeth4(unsigned char* row, const unsigned char* prev, std::size_t len) {
     const __m128i use_a = _mm_cmpeq_epi16(smallest, pa), use_b = _mm_cmpeq_epi16(smallest, pb);
     const __m128i b_or_c = _mm_or_si128(_mm_and_si128(use_b, b), _mm_andnot_si128(use_b, c));
     const __m128i pred = _mm_or_si128(_mm_and_si128(use_a, a), _mm_andnot_si128(use_a, b_or_c));
-    const __m128i d = _mm_and_si128(_mm_add_epi16(load4(row + i), pred), _mm_set1_epi16(0xff));
+    const __m128i d = _mm_and_si128(_mm_add_epi16(load4(src + i), pred), _mm_set1_epi16(0xff));
     const std::int32_t out = _mm_cvtsi128_si32(_mm_packus_epi16(d, d));
-    std::memcpy(row + i, &out, 4);
+    std::memcpy(dst + i, &out, 4);
     a = d;
     c = b;
   }
 }
 
-// Reverses one row's filter in place; `prev` is the previous unfiltered row (zeros for row 0).
+// Up, 16 bytes at a time. Written out because dst may overlap src (see unfilter), which
+// keeps the compiler from vectorising the plain loop.
+void unup(const unsigned char* src, unsigned char* dst, const unsigned char* prev,
+          std::size_t len) {
+  std::size_t i = 0;
+  for (; i + 16 <= len; i += 16) {
+    const __m128i v = _mm_loadu_si128(reinterpret_cast<const __m128i*>(src + i));
+    const __m128i p = _mm_loadu_si128(reinterpret_cast<const __m128i*>(prev + i));
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(dst + i), _mm_add_epi8(v, p));
+  }
+  for (; i < len; ++i) dst[i] = static_cast<unsigned char>(src[i] + prev[i]);
+}
+
+// Reverses one row's filter from src into dst; `prev` is the previous unfiltered row (zeros
+// for row 0). dst is src, or lies before it in the same buffer: each byte is written only
+// after the bytes of src at and below its address have been read, going forward.
 template <int Bpp>
-bool unfilter(int type, unsigned char* row, const unsigned char* prev, std::size_t len) {
+bool unfilter(int type, const unsigned char* src, unsigned char* dst, const unsigned char* prev,
+              std::size_t len) {
   switch (type) {
     case 0:
+      std::memmove(dst, src, len);
       return true;
     case 1:
+      for (std::size_t i = 0; i < Bpp; ++i) dst[i] = src[i];
       for (std::size_t i = Bpp; i < len; ++i)
-        row[i] = static_cast<unsigned char>(row[i] + row[i - Bpp]);
+        dst[i] = static_cast<unsigned char>(src[i] + dst[i - Bpp]);
       return true;
     case 2:
-      for (std::size_t i = 0; i < len; ++i) row[i] = static_cast<unsigned char>(row[i] + prev[i]);
+      unup(src, dst, prev, len);
       return true;
     case 3:
       for (std::size_t i = 0; i < Bpp; ++i)
-        row[i] = static_cast<unsigned char>(row[i] + (prev[i] >> 1));
+        dst[i] = static_cast<unsigned char>(src[i] + (prev[i] >> 1));
       for (std::size_t i = Bpp; i < len; ++i) {
-        row[i] = static_cast<unsigned char>(row[i] + ((row[i - Bpp] + prev[i]) >> 1));
+        dst[i] = static_cast<unsigned char>(src[i] + ((dst[i - Bpp] + prev[i]) >> 1));
       }
       return true;
     case 4:
       if constexpr (Bpp == 4) {
-        unpaeth4(row, prev, len);
+        unpaeth4(src, dst, prev, len);
         return true;
       }
-      for (std::size_t i = 0; i < Bpp; ++i) row[i] = static_cast<unsigned char>(row[i] + prev[i]);
+      for (std::size_t i = 0; i < Bpp; ++i) dst[i] = static_cast<unsigned char>(src[i] + prev[i]);
       for (std::size_t i = Bpp; i < len; ++i) {
-        row[i] = static_cast<unsigned char>(row[i] + paeth(row[i - Bpp], prev[i], prev[i - Bpp]));
+        dst[i] = static_cast<unsigned char>(src[i] + paeth(dst[i - Bpp], prev[i], prev[i - Bpp]));
       }
       return true;
     default:
@@ -89,34 +107,26 @@ bool unfilter(int type, unsigned char* row, const unsigned char* prev, std::size
   }
 }
 
-// A byte buffer for a whole image. Fresh pages cost a fault each on first touch, which on
-// virtual machines is most of a decode's time: ask for transparent huge pages instead.
-cv::Mat big_buffer(std::size_t bytes) {
-  cv::Mat m(1, static_cast<int>(bytes), CV_8U);
-  constexpr std::uintptr_t kHuge = std::uintptr_t{2} << 20;
-  const auto begin = reinterpret_cast<std::uintptr_t>(m.data);
-  const std::uintptr_t first = (begin + kHuge - 1) & ~(kHuge - 1);
-  const std::uintptr_t last = (begin + bytes) & ~(kHuge - 1);
-  if (last > first) ::madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE);
-  // Fault every page in with one call rather than one fault per page (Linux >= 5.14; on
-  // older kernels this fails harmlessly and pages fault in as they are touched).
-  const std::uintptr_t page_begin = begin & ~std::uintptr_t{4095};
-  ::madvise(reinterpret_cast<void*>(page_begin), begin + bytes - page_begin, MADV_POPULATE_WRITE);
-  return m;
-}
-
 struct Decompressor {
   libdeflate_decompressor* d = libdeflate_alloc_decompressor();
   ~Decompressor() { libdeflate_free_decompressor(d); }
 };
 
-}  // namespace
+FileError corrupt(const std::string& name, const char* why) {
+  return FileError(fmt::format("{}: {}: truncated or corrupt PNG", name, why));
+}
 
-std::optional<cv::Mat> decode_png_fast(std::span<const unsigned char> png,
-                                       const std::string& name) {
-  auto corrupt = [&](const char* why) {
-    return FileError(fmt::format("{}: {}: truncated or corrupt PNG", name, why));
-  };
+// A PNG of this decoder's kind, inflated: `raw` holds each row's filter byte and bytes.
+struct Inflated {
+  PixelBuffer raw;
+  std::uint32_t width = 0, height = 0;
+  int bpp = 0;
+  std::size_t row_len() const { return std::size_t{width} * std::size_t(bpp); }
+};
+
+// Parses and inflates, checking everything a full decode would except the pixel values
+// themselves: chunk CRCs, the zlib stream and its Adler-32, the length, each row's filter.
+std::optional<Inflated> inflate_png(std::span<const unsigned char> png, const std::string& name) {
   // Signature (checked by the caller), then IHDR must come first.
   if (png.size() < 8 + 25 || be32(&png[8]) != 13 || std::memcmp(&png[12], "IHDR", 4) != 0) {
     return std::nullopt;
@@ -132,13 +142,15 @@ std::optional<cv::Mat> decode_png_fast(std::span<const unsigned char> png,
   std::size_t pos = 8, total = 0;
   bool ended = false;
   while (!ended) {
-    if (pos + 12 > png.size()) throw corrupt("file ends inside a chunk");
+    if (pos + 12 > png.size()) throw corrupt(name, "file ends inside a chunk");
     const std::uint32_t len = be32(&png[pos]);
-    if (len > png.size() - pos - 12) throw corrupt("file ends inside a chunk");
+    if (len > png.size() - pos - 12) throw corrupt(name, "file ends inside a chunk");
     const unsigned char* type = &png[pos + 4];
     const std::uint32_t crc = be32(&png[pos + 8 + len]);
     const bool critical = !(type[0] & 0x20);
-    if (critical && libdeflate_crc32(0, type, len + 4) != crc) throw corrupt("chunk CRC mismatch");
+    if (critical && libdeflate_crc32(0, type, len + 4) != crc) {
+      throw corrupt(name, "chunk CRC mismatch");
+    }
     if (std::memcmp(type, "IDAT", 4) == 0) {
       idat.emplace_back(&png[pos + 8], len);
       total += len;
@@ -148,7 +160,7 @@ std::optional<cv::Mat> decode_png_fast(std::span<const unsigned char> png,
     ended = std::memcmp(type, "IEND", 4) == 0;
     pos += 12 + len;
   }
-  if (idat.empty()) throw corrupt("no image data");
+  if (idat.empty()) throw corrupt(name, "no image data");
   std::vector<unsigned char> joined;
   std::span<const unsigned char> stream = idat.front();
   if (idat.size() > 1) {
@@ -156,33 +168,52 @@ std::optional<cv::Mat> decode_png_fast(std::span<const unsigned char> png,
     for (const auto& s : idat) joined.insert(joined.end(), s.begin(), s.end());
     stream = joined;
   }
-  const int bpp = colour == 6 ? 4 : 3;
-  const std::size_t row_len = std::size_t{w} * bpp;
-  // Inflate into one buffer, unfilter in place, then close up the filter bytes so that for
-  // RGBA the same memory becomes the image: no second image-sized allocation or copy.
-  cv::Mat raw = big_buffer((row_len + 1) * h);
+  Inflated out{PixelBuffer(), w, h, colour == 6 ? 4 : 3};
+  out.raw = PixelBuffer((out.row_len() + 1) * h);
   static thread_local Decompressor dec;
   std::size_t got = 0;
-  const libdeflate_result rc =
-      libdeflate_zlib_decompress(dec.d, stream.data(), stream.size(), raw.data, raw.total(), &got);
-  if (rc != LIBDEFLATE_SUCCESS || got != raw.total()) throw corrupt("bad or short image data");
+  const libdeflate_result rc = libdeflate_zlib_decompress(dec.d, stream.data(), stream.size(),
+                                                          out.raw.data(), out.raw.size(), &got);
+  if (rc != LIBDEFLATE_SUCCESS || got != out.raw.size()) {
+    throw corrupt(name, "bad or short image data");
+  }
+  for (std::uint32_t y = 0; y < h; ++y) {
+    if (out.raw.data()[y * (out.row_len() + 1)] > 4) throw corrupt(name, "unknown row filter");
+  }
+  return out;
+}
 
+}  // namespace
+
+std::optional<ImageSize> check_png_fast(std::span<const unsigned char> png,
+                                        const std::string& name) {
+  const std::optional<Inflated> in = inflate_png(png, name);
+  if (!in) return std::nullopt;
+  return ImageSize{static_cast<int>(in->width), static_cast<int>(in->height)};
+}
+
+std::optional<RgbaImage> decode_png_fast(std::span<const unsigned char> png,
+                                         const std::string& name) {
+  std::optional<Inflated> in = inflate_png(png, name);
+  if (!in) return std::nullopt;
+  const std::uint32_t w = in->width, h = in->height;
+  const std::size_t row_len = in->row_len();
+  unsigned char* raw = in->raw.data();
+  // RGBA unfilters row y to y * row_len, y + 1 bytes left of where it was inflated, so the
+  // same memory becomes the image: no second image-sized buffer and no extra pass.
   const std::vector<unsigned char> zeros(row_len, 0);
   const unsigned char* prev = zeros.data();
-  cv::Mat out = bpp == 4 ? cv::Mat() : big_buffer(std::size_t{w} * h * 4);
+  PixelBuffer rgb_out(in->bpp == 4 ? 0 : std::size_t{w} * h * 4);
   for (std::uint32_t y = 0; y < h; ++y) {
-    unsigned char* row = raw.data + y * (row_len + 1) + 1;
-    const bool ok = bpp == 4 ? unfilter<4>(row[-1], row, prev, row_len)
-                             : unfilter<3>(row[-1], row, prev, row_len);
-    if (!ok) throw corrupt("unknown row filter");
-    if (bpp == 4) {
-      // Row y moves y + 1 bytes left; the previous row's unfiltered bytes stay readable
-      // because rows only ever move left over bytes already consumed.
-      unsigned char* dst = raw.data + y * row_len;
-      std::memmove(dst, row, row_len);
+    const unsigned char* row = raw + y * (row_len + 1) + 1;
+    if (in->bpp == 4) {
+      unsigned char* dst = raw + y * row_len;
+      unfilter<4>(row[-1], row, dst, prev, row_len);
       prev = dst;
     } else {
-      unsigned char* dst = out.data + std::size_t{y} * w * 4;
+      unsigned char* filtered = raw + y * (row_len + 1) + 1;
+      unfilter<3>(row[-1], filtered, filtered, prev, row_len);
+      unsigned char* dst = rgb_out.data() + std::size_t{y} * w * 4;
       for (std::uint32_t x = 0; x < w; ++x) {
         dst[4 * x] = row[3 * x], dst[4 * x + 1] = row[3 * x + 1], dst[4 * x + 2] = row[3 * x + 2];
         dst[4 * x + 3] = 255;
@@ -190,8 +221,8 @@ std::optional<cv::Mat> decode_png_fast(std::span<const unsigned char> png,
       prev = row;
     }
   }
-  if (bpp == 4) out = raw.colRange(0, static_cast<int>(row_len * h));
-  return out.reshape(4, static_cast<int>(h));
+  return RgbaImage(in->bpp == 4 ? std::move(in->raw) : std::move(rgb_out), static_cast<int>(w),
+                   static_cast<int>(h));
 }
 
 }  // namespace aosuite

@@ -4,15 +4,22 @@
 // run time. Every other kind of PNG goes to libspng.
 #pragma once
 
-#include <opencv2/core.hpp>
 #include <optional>
 #include <span>
 #include <string>
 
+#include "compare/rgba_image.hpp"
+
 namespace aosuite {
 
-// Decodes to CV_8UC4, or returns nullopt when the file is of a kind this decoder leaves to
-// libspng. Throws FileError for a corrupt or truncated file of its own kind.
-std::optional<cv::Mat> decode_png_fast(std::span<const unsigned char> png, const std::string& name);
+// Decodes, or returns nullopt when the file is of a kind this decoder leaves to libspng.
+// Throws FileError for a corrupt or truncated file of its own kind.
+std::optional<RgbaImage> decode_png_fast(std::span<const unsigned char> png,
+                                         const std::string& name);
+
+// Everything decode_png_fast checks (chunk CRCs, the zlib stream and its checksum, the row
+// filters) without unfiltering the pixels; the image's size.
+std::optional<ImageSize> check_png_fast(std::span<const unsigned char> png,
+                                        const std::string& name);
 
 }  // namespace aosuite

@@ -4,12 +4,12 @@
 #include <chrono>
 #include <cmath>
 #include <mutex>
-#include <opencv2/core/utility.hpp>
 #include <stdexcept>
 #include <string>
 
 #include "compare/count_kernel.hpp"
 #include "compare/js_number.hpp"
+#include "compare/parallel_rows.hpp"
 #include "compare/resemble_pixel.hpp"
 
 namespace aosuite::resemble {
@@ -100,8 +100,8 @@ double or_default(double v, double fallback) { return (v == 0 || std::isnan(v)) 
 
 class PixelJudge {
  public:
-  PixelJudge(const cv::Mat& d1, const cv::Mat& d2, const Options& o, const Settings& s)
-      : d1_(d1.data), d2_(d2.data), w_(d1.cols), h_(d1.rows), o_(o), s_(s) {}
+  PixelJudge(RgbaView d1, RgbaView d2, const Options& o, const Settings& s)
+      : d1_(d1.data), d2_(d2.data), w_(d1.width), h_(d1.height), o_(o), s_(s) {}
 
   // Resemble's per-pixel body (resemble.js 598-654). Paints into diff when it is non-null;
   // returns true for a mismatch.
@@ -211,32 +211,44 @@ class PixelJudge {
 // Resemble skips every sixth row and column of large images, in antialiasing mode only.
 bool skipped(int x, int y, bool skip) { return skip && (x % 6 == 0 || y % 6 == 0); }
 
-cv::Mat as_seen(const cv::Mat& img, int w, int h, CanvasAlpha model) {
-  CV_Assert(img.type() == CV_8UC4);
-  cv::Mat out = img.isContinuous() ? img : img.clone();
-  if (model != CanvasAlpha::kNone) {
-    if (out.data == img.data) out = img.clone();
-    apply_canvas_decode(out, model);
+// An image as Resemble's canvas sees it: the caller's pixels, or a modified copy.
+struct Seen {
+  RgbaImage copy;
+  RgbaView view;
+};
+
+Seen as_seen(RgbaView img, int w, int h, CanvasAlpha model) {
+  if (img.width == w && img.height == h && model == CanvasAlpha::kNone) return {{}, img};
+  Seen out;
+  if (img.width == w && img.height == h) {
+    out.copy = copy_of(img);
+    apply_canvas_decode(out.copy, model);
+  } else {
+    // The smaller image is padded right and bottom with transparent black (normalise()).
+    out.copy = RgbaImage(w, h);
+    RgbaImage decoded = copy_of(img);
+    apply_canvas_decode(decoded, model);
+    for (int y = 0; y < img.height; ++y) {
+      std::copy_n(decoded.view().row(y), std::size_t(img.width) * 4,
+                  out.copy.data() + std::size_t(y) * std::size_t(w) * 4);
+    }
+    apply_canvas_put_get(out.copy, model);
   }
-  if (out.cols == w && out.rows == h) return out;
-  // The smaller image is padded right and bottom with transparent black (normalise()).
-  cv::Mat padded = cv::Mat::zeros(h, w, CV_8UC4);
-  out.copyTo(padded(cv::Rect(0, 0, out.cols, out.rows)));
-  apply_canvas_put_get(padded, model);
-  return padded;
+  out.view = out.copy.view();
+  return out;
 }
 
 // When Resemble returns early it stops after the first pixel, in its column-major order,
 // at which the running percentage exceeds the threshold. Our pass is row-major and
 // complete, so replay that order over the mismatch mask.
-MismatchTally truncate_early(const cv::Mat& mask, bool skip, double threshold) {
-  const int w = mask.cols, h = mask.rows;
+MismatchTally truncate_early(const std::vector<unsigned char>& mask, int w, int h, bool skip,
+                             double threshold) {
   const double pixels = double(h) * double(w);
   auto above = [&](std::uint64_t n) { return (double(n) / pixels) * 100 > threshold; };
+  auto at = [&](int x, int y) { return mask[std::size_t(y) * std::size_t(w) + std::size_t(x)]; };
   std::vector<std::uint32_t> column(static_cast<std::size_t>(w), 0);
   for (int y = 0; y < h; ++y) {
-    const unsigned char* row = mask.ptr<unsigned char>(y);
-    for (int x = 0; x < w; ++x) column[x] += row[x];
+    for (int x = 0; x < w; ++x) column[std::size_t(x)] += at(x, y);
   }
   std::uint64_t seen = 0;
   int stop_x = w, stop_y = h;
@@ -247,7 +259,7 @@ MismatchTally truncate_early(const cv::Mat& mask, bool skip, double threshold) {
     }
     for (int y = 0; y < h; ++y) {
       if (skipped(x, y, skip)) continue;
-      seen += mask.at<unsigned char>(y, x);
+      seen += at(x, y);
       if (above(seen)) {
         stop_x = x, stop_y = y;
         break;
@@ -256,9 +268,8 @@ MismatchTally truncate_early(const cv::Mat& mask, bool skip, double threshold) {
   }
   MismatchTally t;
   for (int y = 0; y < h; ++y) {
-    const unsigned char* row = mask.ptr<unsigned char>(y);
     for (int x = 0; x < std::min(w, stop_x + 1); ++x) {
-      if (row[x] && (x < stop_x || y <= stop_y)) t.add(y, 1, x, x);
+      if (at(x, y) && (x < stop_x || y <= stop_y)) t.add(y, 1, x, x);
     }
   }
   return t;
@@ -266,12 +277,40 @@ MismatchTally truncate_early(const cv::Mat& mask, bool skip, double threshold) {
 
 }  // namespace
 
-Result compare(const cv::Mat& a, const cv::Mat& b, const Options& options) {
+namespace {
+
+void finish(Result& r, const MismatchTally& tally, RgbaView a, RgbaView b,
+            std::chrono::steady_clock::time_point start) {
+  const int w = std::max(a.width, b.width), h = std::max(a.height, b.height);
+  r.mismatch_count = tally.count;
+  r.raw_mismatch_percentage = (double(tally.count) / (double(h) * double(w))) * 100;
+  r.mismatch_percentage = js_to_fixed2(r.raw_mismatch_percentage);
+  r.same_dimensions = a.width == b.width && a.height == b.height;
+  r.width_difference = a.width - b.width;
+  r.height_difference = a.height - b.height;
+  r.diff_bounds =
+      tally.count ? Bounds{tally.top, tally.left, tally.bottom, tally.right} : Bounds{h, w, 0, 0};
+  r.analysis_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+Result compare_identical(ImageSize size) {
+  const auto start = std::chrono::steady_clock::now();
+  const RgbaView v{nullptr, size.width, size.height};
+  Result r;
+  finish(r, {}, v, v, start);
+  return r;
+}
+
+Result compare(RgbaView a, RgbaView b, const Options& options) {
   const auto start = std::chrono::steady_clock::now();
   const Settings s = resolve(options);
-  const int w = std::max(a.cols, b.cols), h = std::max(a.rows, b.rows);
-  const cv::Mat d1 = as_seen(a, w, h, options.canvas_alpha);
-  const cv::Mat d2 = as_seen(b, w, h, options.canvas_alpha);
+  const int w = std::max(a.width, b.width), h = std::max(a.height, b.height);
+  const Seen seen1 = as_seen(a, w, h, options.canvas_alpha);
+  const Seen seen2 = as_seen(b, w, h, options.canvas_alpha);
+  const RgbaView d1 = seen1.view, d2 = seen2.view;
 
   const double thr = options.large_image_threshold;
   const bool skip = thr != 0 && !std::isnan(thr) && s.ignore_antialiasing && (w > thr || h > thr);
@@ -296,40 +335,27 @@ Result compare(const cv::Mat& a, const cv::Mat& b, const Options& options) {
     }
     tally = count_mismatches(d1.data, d2.data, w, h, min_delta);
   } else {
-    if (options.produce_diff && !compare_only) r.diff = cv::Mat::zeros(h, w, CV_8UC4);
-    cv::Mat mask;
-    if (stops_early) mask = cv::Mat::zeros(h, w, CV_8U);
+    if (options.produce_diff && !compare_only) r.diff = RgbaImage(w, h);
+    std::vector<unsigned char> mask(stops_early ? std::size_t(w) * std::size_t(h) : 0);
     const PixelJudge judge(d1, d2, options, s);
+    unsigned char* diff = r.diff.empty() ? nullptr : r.diff.data();
     std::mutex m;
-    cv::parallel_for_(
-        cv::Range(0, h),
-        [&](const cv::Range& rows) {
-          MismatchTally local;
-          unsigned char* diff = r.diff.empty() ? nullptr : r.diff.data;
-          for (int y = rows.start; y < rows.end; ++y) {
-            for (int x = 0; x < w; ++x) {
-              if (skipped(x, y, skip) || !judge.judge(x, y, diff)) continue;
-              local.add(y, 1, x, x);
-              if (!mask.empty()) mask.at<unsigned char>(y, x) = 1;
-            }
-          }
-          std::lock_guard lock(m);
-          tally.merge(local);
-        },
-        std::max(1.0, double(w) * h / (1 << 16)));
-    if (stops_early) tally = truncate_early(mask, skip, early);
+    parallel_rows(w, h, [&](int y0, int y1) {
+      MismatchTally local;
+      for (int y = y0; y < y1; ++y) {
+        for (int x = 0; x < w; ++x) {
+          if (skipped(x, y, skip) || !judge.judge(x, y, diff)) continue;
+          local.add(y, 1, x, x);
+          if (stops_early) mask[std::size_t(y) * std::size_t(w) + std::size_t(x)] = 1;
+        }
+      }
+      std::lock_guard lock(m);
+      tally.merge(local);
+    });
+    if (stops_early) tally = truncate_early(mask, w, h, skip, early);
   }
 
-  r.mismatch_count = tally.count;
-  r.raw_mismatch_percentage = (double(tally.count) / (double(h) * double(w))) * 100;
-  r.mismatch_percentage = js_to_fixed2(r.raw_mismatch_percentage);
-  r.same_dimensions = a.cols == b.cols && a.rows == b.rows;
-  r.width_difference = a.cols - b.cols;
-  r.height_difference = a.rows - b.rows;
-  r.diff_bounds =
-      tally.count ? Bounds{tally.top, tally.left, tally.bottom, tally.right} : Bounds{h, w, 0, 0};
-  r.analysis_ms =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  finish(r, tally, a, b, start);
   return r;
 }
 

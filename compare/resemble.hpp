@@ -4,13 +4,13 @@
 #pragma once
 
 #include <cstdint>
-#include <opencv2/core.hpp>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "compare/canvas_alpha.hpp"
+#include "compare/rgba_image.hpp"
 
 namespace aosuite::resemble {
 
@@ -84,11 +84,16 @@ struct Result {
   int height_difference = 0;
   Bounds diff_bounds;
   double analysis_ms = 0;
-  cv::Mat diff;  // CV_8UC4, when asked for and no early return
+  RgbaImage diff;  // when asked for and no early return
 };
 
-// a and b are CV_8UC4 RGBA, as decoded from the files (the canvas model in options decides
-// what a browser would have made of translucent pixels).
-Result compare(const cv::Mat& a, const cv::Mat& b, const Options& options);
+// a and b as decoded from the files (the canvas model in options decides what a browser
+// would have made of translucent pixels).
+Result compare(RgbaView a, RgbaView b, const Options& options);
+
+// What compare(x, x, options) returns for every image x of this size, without reading it:
+// an image never differs from itself, whatever the modes, tolerances, areas or canvas model
+// (every predicate accepts equal values). No diff image.
+Result compare_identical(ImageSize size);
 
 }  // namespace aosuite::resemble

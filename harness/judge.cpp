@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <stdexcept>
 
-#include "compare/image_io.hpp"
+#include "compare/opencv.hpp"
 
 namespace aosuite::harness {
 

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "compare/rgba_image.hpp"
 #include "harness/suite.hpp"
 
 namespace aosuite::harness {
@@ -24,7 +25,7 @@ struct ImageVerdict {
   int max_channel_delta = 0;     // largest |new - golden| over unignored pixels
   std::filesystem::path golden;  // the accepted golden closest to the render
   std::string message;           // why it failed or could not be judged
-  cv::Mat diff;                  // Resemble's diff image, when asked and not passing
+  RgbaImage diff;                // Resemble's diff image, when asked and not passing
 };
 
 // Judges `render` (the PNG bytes and their decoded RGBA) against `goldens` (accepted variants;

@@ -10,7 +10,7 @@
 #include <stdexcept>
 #include <thread>
 
-#include "compare/image_io.hpp"
+#include "compare/opencv.hpp"
 #include "harness/case_hash.hpp"
 #include "harness/goldens.hpp"
 #include "renderer/renderer.hpp"
@@ -207,7 +207,7 @@ void judge_case(const Suite& suite, const Case& c, const std::string& platform, 
     }
     if (r.message.empty() && v.status != Status::kPass) r.message = name + ": " + v.message;
     r.status = worst(r.status, v.status);
-    v.diff.release();
+    v.diff = {};
     r.images.push_back(std::move(v));
   }
   if (r.status != Status::kPass) r.bless_command = bless_command(suite, c.id);

@@ -8,7 +8,7 @@
 #include <sstream>
 #include <string>
 
-#include "compare/image_io.hpp"
+#include "compare/opencv.hpp"
 #include "png_fixture.hpp"
 #include "process.hpp"
 
@@ -76,6 +76,15 @@ TEST_F(CliCompare, BadInputIsExitTwoWithOneLineAndNothingWritten) {
     EXPECT_NE(r.err.find(bad), std::string::npos) << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
     EXPECT_FALSE(std::filesystem::exists(dir_ / "out.png")) << bad;
+  }
+  // Byte-identical files skip the pixel comparison, but not the check that they decode.
+  test::Bytes bad_data = good;
+  bad_data[good.size() - 20] ^= 0x55;  // in the last IDAT: its CRC no longer matches
+  test::write_bytes(dir_ / "bad_data.png", bad_data);
+  for (const char* bad : {"text.png", "cut.png", "huge.png", "bad_data.png"}) {
+    const Outcome r = run(dir_, path(bad) + " " + path(bad));
+    EXPECT_EQ(r.rc, 2) << bad << " against itself";
+    EXPECT_NE(r.err.find(bad), std::string::npos) << r.err;
   }
   EXPECT_EQ(run(dir_, path("a.png") + " " + path("b.png") + " --mode sideways").rc, 2);
   EXPECT_EQ(run(dir_, path("a.png")).rc, 2);

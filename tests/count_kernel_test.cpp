@@ -6,7 +6,7 @@
 
 #include <random>
 
-#include "compare/resemble.hpp"
+#include "compare/opencv.hpp"
 
 namespace aosuite {
 namespace {

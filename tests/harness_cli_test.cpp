@@ -10,7 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
-#include "compare/image_io.hpp"
+#include "compare/opencv.hpp"
 #include "png_fixture.hpp"
 #include "process.hpp"
 

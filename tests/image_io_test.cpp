@@ -1,8 +1,7 @@
-#include "compare/image_io.hpp"
-
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include "compare/opencv.hpp"
 #include "png_fixture.hpp"
 
 namespace aosuite {
@@ -61,15 +60,22 @@ TEST(DecodePng, CorruptImageDataInTheFastPathIsAnError) {
   EXPECT_THROW(decode_png_rgba8(make_png(2, 2, 8, 6, rows, {}, {}, {9}, 4), "x.png"), FileError);
 }
 
+// Both decode_png and check_png must refuse it with the same kind of message.
 void expect_error(const Bytes& png, const std::string& fragment) {
-  try {
-    decode_png_rgba8(png, "bad.png");
-    ADD_FAILURE() << "no error for " << fragment;
-  } catch (const FileError& e) {
-    const std::string what = e.what();
-    EXPECT_NE(what.find("bad.png"), std::string::npos) << what;
-    EXPECT_NE(what.find(fragment), std::string::npos) << what;
-    EXPECT_EQ(what.find('\n'), std::string::npos) << "one line: " << what;
+  for (const bool full : {true, false}) {
+    try {
+      if (full) {
+        decode_png(png, "bad.png");
+      } else {
+        check_png(png, "bad.png");
+      }
+      ADD_FAILURE() << "no error for " << fragment << (full ? " (decode)" : " (check)");
+    } catch (const FileError& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find("bad.png"), std::string::npos) << what;
+      EXPECT_NE(what.find(fragment), std::string::npos) << what;
+      EXPECT_EQ(what.find('\n'), std::string::npos) << "one line: " << what;
+    }
   }
 }
 
@@ -84,6 +90,26 @@ TEST(DecodePng, RejectsBadInputWithOneLineNamingTheFile) {
   expect_error(make_png(20000, 20000, 8, 6, {}), "larger than");
   // a valid header whose data is missing
   expect_error(make_png(4, 4, 8, 2, {}), "corrupt");
+  // the fast path's own checks: CRC, zlib stream, row filter
+  Bytes bad_crc = make_png(8, 8, 8, 6, std::vector<Bytes>(8, Bytes(32, 200)));
+  bad_crc[40] ^= 0x55;
+  expect_error(bad_crc, "CRC");
+  expect_error(make_png(2, 2, 8, 6, std::vector<Bytes>(2, Bytes(8, 1)), {}, {}, {9}, 4), "filter");
+}
+
+TEST(DecodePng, CheckGivesTheSizeOfWhatDecodes) {
+  const std::vector<Bytes> pngs = {
+      make_png(5, 3, 8, 6, std::vector<Bytes>(3, Bytes(20, 9)), {}, {}, {0, 1, 2, 3, 4}, 4),
+      make_png(7, 2, 8, 2, std::vector<Bytes>(2, Bytes(21, 9))),
+      make_png(1, 1, 8, 0, {{77}}),  // libspng's path
+      make_png(1, 1, 8, 3, {{1}}, {10, 20, 30, 40, 50, 60}, {255, 99}),
+  };
+  for (const Bytes& png : pngs) {
+    const RgbaImage img = decode_png(png, "x.png");
+    const ImageSize size = check_png(png, "x.png");
+    EXPECT_EQ(size.width, img.width());
+    EXPECT_EQ(size.height, img.height());
+  }
 }
 
 TEST(FileIo, MissingFilesAndDirectoriesAreClearErrors) {
