@@ -2,9 +2,12 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <cstring>
+#include <stdexcept>
+#include <vector>
 
 #include "compare/image_io.hpp"
 #include "renderer/content_hash.hpp"
@@ -59,8 +62,54 @@ fs::path default_cache_dir() {
   return fs::path(AOSUITE_CACHE_DIR) / "reference";
 }
 
-ReferenceCache::ReferenceCache(const renderer::Scene& scene, fs::path dir)
-    : scene_(scene), dir_(std::move(dir)), scene_hash_(geometry_hash(scene)) {}
+std::uint64_t default_cache_limit() {
+  constexpr std::uint64_t kMb = 1 << 20;
+  const char* env = std::getenv("AOSUITE_REFERENCE_CACHE_MB");
+  if (!env || !*env) return 2048 * kMb;
+  char* end = nullptr;
+  const unsigned long long mb = std::strtoull(env, &end, 10);
+  if (*end != '\0' || env[0] == '-') {
+    throw std::invalid_argument(
+        fmt::format("AOSUITE_REFERENCE_CACHE_MB='{}': expected a whole number of megabytes", env));
+  }
+  return mb * kMb;
+}
+
+int prune_cache(const fs::path& dir, std::uint64_t limit_bytes, const fs::path& keep) {
+  struct Entry {
+    fs::file_time_type used;
+    std::uint64_t bytes;
+    fs::path path;
+  };
+  std::vector<Entry> entries;
+  std::uint64_t total = 0;
+  std::error_code ec;
+  for (const fs::directory_entry& e : fs::directory_iterator(dir, ec)) {
+    if (e.path().extension() != ".aoref" || !e.is_regular_file(ec)) continue;
+    const std::uint64_t bytes = e.file_size(ec);
+    const fs::file_time_type used = e.last_write_time(ec);
+    if (ec) continue;  // gone since listed
+    entries.push_back({used, bytes, e.path()});
+    total += bytes;
+  }
+  std::sort(entries.begin(), entries.end(),
+            [](const Entry& a, const Entry& b) { return a.used < b.used; });
+  int deleted = 0;
+  for (const Entry& e : entries) {
+    if (total <= limit_bytes) break;
+    if (e.path == keep) continue;
+    if (fs::remove(e.path, ec)) ++deleted;
+    total -= e.bytes;  // removed here or by someone else: either way no longer held
+  }
+  return deleted;
+}
+
+ReferenceCache::ReferenceCache(const renderer::Scene& scene, fs::path dir,
+                               std::uint64_t limit_bytes)
+    : scene_(scene),
+      dir_(std::move(dir)),
+      limit_bytes_(limit_bytes),
+      scene_hash_(geometry_hash(scene)) {}
 ReferenceCache::~ReferenceCache() = default;
 
 std::string ReferenceCache::key(const renderer::Camera& camera, const cv::Mat& depth,
@@ -82,6 +131,8 @@ cv::Mat ReferenceCache::get(const renderer::Camera& camera, const cv::Mat& depth
   if (!file.empty()) {
     if (cv::Mat cached = load(file, depth.cols, depth.rows); !cached.empty()) {
       last_cached_ = true, last_seconds_ = 0;
+      std::error_code ec;  // recently used: pruned last (best effort on read-only caches)
+      fs::last_write_time(file, fs::file_time_type::clock::now(), ec);
       return cached;
     }
   }
@@ -90,7 +141,10 @@ cv::Mat ReferenceCache::get(const renderer::Camera& camera, const cv::Mat& depth
   cv::Mat ao = reference_ao(*embree_, camera, depth, normal, s);
   last_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   last_cached_ = false;
-  if (!file.empty()) store(file, ao);
+  if (!file.empty()) {
+    store(file, ao);
+    if (limit_bytes_ > 0) prune_cache(dir_, limit_bytes_, file);
+  }
   return ao;
 }
 

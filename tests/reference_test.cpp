@@ -4,8 +4,10 @@
 
 #include <cmath>
 
+#include "png_fixture.hpp"
 #include "reference/error_metrics.hpp"
 #include "reference/reference_ao.hpp"
+#include "reference/reference_cache.hpp"
 #include "renderer/renderer.hpp"
 
 namespace aosuite::reference {
@@ -169,6 +171,47 @@ TEST(Reference, UnoccludedPlaneImageIsExactlyOne) {
                                   img.depth, img.normal, {64, 10, Variant::kAo}, 2);
   EXPECT_EQ(cv::countNonZero(ao != 1.0f), 0);
   EXPECT_GT(cv::countNonZero(img.depth > 0), 64 * 48 / 3);
+}
+
+TEST(ReferenceCache, PruneDeletesTheLeastRecentlyUsedFirst) {
+  test::TempDir dir;
+  const auto now = std::filesystem::file_time_type::clock::now();
+  for (int i = 0; i < 5; ++i) {  // 100 bytes each; file 0 used longest ago
+    const auto file = dir / (std::to_string(i) + ".aoref");
+    test::write_bytes(file, test::Bytes(100, 1));
+    std::filesystem::last_write_time(file, now - std::chrono::minutes(10 - i));
+  }
+  test::write_bytes(dir / "notes.txt", test::Bytes(1000, 1));  // not a reference: kept
+  EXPECT_EQ(prune_cache(dir.path(), 500, {}), 0);
+  EXPECT_EQ(prune_cache(dir.path(), 250, dir / "0.aoref"), 3);  // 1, 2, 3 go; 0 is kept
+  for (const char* gone : {"1.aoref", "2.aoref", "3.aoref"})
+    EXPECT_FALSE(std::filesystem::exists(dir / gone)) << gone;
+  for (const char* kept : {"0.aoref", "4.aoref", "notes.txt"})
+    EXPECT_TRUE(std::filesystem::exists(dir / kept)) << kept;
+}
+
+TEST(ReferenceCache, StaysWithinItsLimitAndKeepsWhatWasJustUsed) {
+  const rd::Scene plane = rd::builtin_scene("plane");
+  const rd::Images img = gbuffer(plane, plane.views[0], 32, 24);
+  const rd::Camera camera = rd::make_camera(plane.views[0], 32, 24);
+  test::TempDir dir;
+  const std::uint64_t one_file = 16 + 32 * 24 * 4;
+  ReferenceCache cache(plane, dir.path(), one_file + one_file / 2);  // room for one
+  auto get = [&](float radius) {
+    return cache.get(camera, img.depth, img.normal, {16, radius, Variant::kAo});
+  };
+  get(1);
+  EXPECT_FALSE(cache.last_was_cached());
+  get(1);
+  EXPECT_TRUE(cache.last_was_cached());
+  get(2);  // a second reference pushes the first out
+  get(2);
+  EXPECT_TRUE(cache.last_was_cached());
+  get(1);
+  EXPECT_FALSE(cache.last_was_cached());
+  int files = 0;
+  for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir.path())) ++files;
+  EXPECT_EQ(files, 1);
 }
 
 TEST(Reference, RejectsBadSettings) {
