@@ -67,43 +67,42 @@ void unup(const unsigned char* src, unsigned char* dst, const unsigned char* pre
   for (; i < len; ++i) dst[i] = static_cast<unsigned char>(src[i] + prev[i]);
 }
 
-// Reverses one row's filter from src into dst; `prev` is the previous unfiltered row (zeros
-// for row 0). dst is src, or lies before it in the same buffer: each byte is written only
-// after the bytes of src at and below its address have been read, going forward.
+// Reverses one row's filter (0..4, checked by inflate_png) from src into dst; `prev` is the
+// previous unfiltered row (zeros for row 0). dst is src, or lies before it in the same
+// buffer: each byte is written only after the bytes of src at and below its address have
+// been read, going forward.
 template <int Bpp>
-bool unfilter(int type, const unsigned char* src, unsigned char* dst, const unsigned char* prev,
+void unfilter(int type, const unsigned char* src, unsigned char* dst, const unsigned char* prev,
               std::size_t len) {
   switch (type) {
     case 0:
       std::memmove(dst, src, len);
-      return true;
+      return;
     case 1:
       for (std::size_t i = 0; i < Bpp; ++i) dst[i] = src[i];
       for (std::size_t i = Bpp; i < len; ++i)
         dst[i] = static_cast<unsigned char>(src[i] + dst[i - Bpp]);
-      return true;
+      return;
     case 2:
       unup(src, dst, prev, len);
-      return true;
+      return;
     case 3:
       for (std::size_t i = 0; i < Bpp; ++i)
         dst[i] = static_cast<unsigned char>(src[i] + (prev[i] >> 1));
       for (std::size_t i = Bpp; i < len; ++i) {
         dst[i] = static_cast<unsigned char>(src[i] + ((dst[i - Bpp] + prev[i]) >> 1));
       }
-      return true;
+      return;
     case 4:
       if constexpr (Bpp == 4) {
         unpaeth4(src, dst, prev, len);
-        return true;
+        return;
       }
       for (std::size_t i = 0; i < Bpp; ++i) dst[i] = static_cast<unsigned char>(src[i] + prev[i]);
       for (std::size_t i = Bpp; i < len; ++i) {
         dst[i] = static_cast<unsigned char>(src[i] + paeth(dst[i - Bpp], prev[i], prev[i - Bpp]));
       }
-      return true;
-    default:
-      return false;
+      return;
   }
 }
 
@@ -168,8 +167,8 @@ std::optional<Inflated> inflate_png(std::span<const unsigned char> png, const st
     for (const auto& s : idat) joined.insert(joined.end(), s.begin(), s.end());
     stream = joined;
   }
-  Inflated out{PixelBuffer(), w, h, colour == 6 ? 4 : 3};
-  out.raw = PixelBuffer((out.row_len() + 1) * h);
+  const int bpp = colour == 6 ? 4 : 3;
+  Inflated out{PixelBuffer((std::size_t{w} * std::size_t(bpp) + 1) * h), w, h, bpp};
   static thread_local Decompressor dec;
   std::size_t got = 0;
   const libdeflate_result rc = libdeflate_zlib_decompress(dec.d, stream.data(), stream.size(),
@@ -205,14 +204,13 @@ std::optional<RgbaImage> decode_png_fast(std::span<const unsigned char> png,
   const unsigned char* prev = zeros.data();
   PixelBuffer rgb_out(in->bpp == 4 ? 0 : std::size_t{w} * h * 4);
   for (std::uint32_t y = 0; y < h; ++y) {
-    const unsigned char* row = raw + y * (row_len + 1) + 1;
+    unsigned char* row = raw + y * (row_len + 1) + 1;
     if (in->bpp == 4) {
       unsigned char* dst = raw + y * row_len;
       unfilter<4>(row[-1], row, dst, prev, row_len);
       prev = dst;
     } else {
-      unsigned char* filtered = raw + y * (row_len + 1) + 1;
-      unfilter<3>(row[-1], filtered, filtered, prev, row_len);
+      unfilter<3>(row[-1], row, row, prev, row_len);
       unsigned char* dst = rgb_out.data() + std::size_t{y} * w * 4;
       for (std::uint32_t x = 0; x < w; ++x) {
         dst[4 * x] = row[3 * x], dst[4 * x + 1] = row[3 * x + 1], dst[4 * x + 2] = row[3 * x + 2];

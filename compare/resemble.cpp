@@ -218,24 +218,21 @@ struct Seen {
 };
 
 Seen as_seen(RgbaView img, int w, int h, CanvasAlpha model) {
-  if (img.width == w && img.height == h && model == CanvasAlpha::kNone) return {{}, img};
-  Seen out;
-  if (img.width == w && img.height == h) {
+  Seen out{{}, img};
+  if (model != CanvasAlpha::kNone) {
     out.copy = copy_of(img);
     apply_canvas_decode(out.copy, model);
-  } else {
-    // The smaller image is padded right and bottom with transparent black (normalise()).
-    out.copy = RgbaImage(w, h);
-    RgbaImage decoded = copy_of(img);
-    apply_canvas_decode(decoded, model);
-    for (int y = 0; y < img.height; ++y) {
-      std::copy_n(decoded.view().row(y), std::size_t(img.width) * 4,
-                  out.copy.data() + std::size_t(y) * std::size_t(w) * 4);
-    }
-    apply_canvas_put_get(out.copy, model);
+    out.view = out.copy.view();
   }
-  out.view = out.copy.view();
-  return out;
+  if (img.width == w && img.height == h) return out;
+  // The smaller image is padded right and bottom with transparent black (normalise()).
+  RgbaImage padded(w, h);
+  for (int y = 0; y < img.height; ++y) {
+    std::copy_n(out.view.row(y), std::size_t(img.width) * 4,
+                padded.data() + std::size_t(y) * std::size_t(w) * 4);
+  }
+  apply_canvas_put_get(padded, model);
+  return {padded, padded.view()};
 }
 
 // When Resemble returns early it stops after the first pixel, in its column-major order,
