@@ -73,6 +73,7 @@ Settings resolve(const Options& options);
 
 struct Bounds {
   int top = 0, left = 0, bottom = 0, right = 0;
+  bool operator==(const Bounds&) const = default;
 };
 
 struct Result {

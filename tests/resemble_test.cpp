@@ -285,10 +285,7 @@ TEST(Resemble, AnImageNeverDiffersFromItself) {
     EXPECT_EQ(r.mismatch_percentage, same.mismatch_percentage);
     EXPECT_EQ(r.raw_mismatch_percentage, same.raw_mismatch_percentage);
     EXPECT_EQ(r.same_dimensions, same.same_dimensions);
-    EXPECT_EQ(r.diff_bounds.top, same.diff_bounds.top);
-    EXPECT_EQ(r.diff_bounds.left, same.diff_bounds.left);
-    EXPECT_EQ(r.diff_bounds.bottom, same.diff_bounds.bottom);
-    EXPECT_EQ(r.diff_bounds.right, same.diff_bounds.right);
+    EXPECT_TRUE(r.diff_bounds == same.diff_bounds);
   }
   EXPECT_EQ(same.diff_bounds.top, 33);  // Resemble's untouched initial bounds
   EXPECT_EQ(same.diff_bounds.left, 21);
