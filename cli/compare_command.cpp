@@ -105,14 +105,20 @@ rs::Result compare_files(const std::string& a, const std::string& b, rs::Options
                          const std::string& diff_path) {
   const MappedFile file_a(a), file_b(b);
   const auto bytes_a = file_a.bytes(), bytes_b = file_b.bytes();
-  if (diff_path.empty() && std::ranges::equal(bytes_a, bytes_b)) {
+  const bool identical = std::ranges::equal(bytes_a, bytes_b);
+  if (identical && diff_path.empty()) {
     // Byte-identical files cannot differ: check that the PNG decodes, skip its pixels.
     return rs::compare_identical(check_png(bytes_a, a));
   }
   o.produce_diff = !diff_path.empty();
-  auto decoding_b = std::async(std::launch::async, [&] { return decode_png(bytes_b, b); });
-  const RgbaImage img_a = decode_png(bytes_a, a);
-  const RgbaImage img_b = decoding_b.get();
+  RgbaImage img_a, img_b;
+  if (identical) {
+    img_a = img_b = decode_png(bytes_a, a);  // the diff image still needs the pixels, once
+  } else {
+    auto decoding_b = std::async(std::launch::async, [&] { return decode_png(bytes_b, b); });
+    img_a = decode_png(bytes_a, a);
+    img_b = decoding_b.get();
+  }
   rs::Result r = rs::compare(img_a, img_b, o);
   if (!diff_path.empty()) {
     if (r.diff.empty()) {
