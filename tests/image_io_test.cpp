@@ -29,22 +29,30 @@ TEST(DecodePng, GreyGreyAlphaPaletteAndSixteenBit) {
 }
 
 TEST(DecodePng, EveryRowFilterForRgbAndRgba) {
-  // Rows cycle through None, Sub, Up, Average and Paeth; random samples exercise every
-  // predictor branch. RGBA and RGB 8-bit take the libdeflate path, the others libspng.
+  // Rows cycle through None, Sub, Up, Average and Paeth, then repeat each filter (a row
+  // filtered against one filtered the same way); random samples exercise every predictor
+  // branch, a few repeated values the ties between them, the widths every loop tail. RGBA
+  // and RGB 8-bit take the libdeflate path.
   cv::RNG rng(5);
+  const unsigned char few[] = {0, 1, 127, 128, 255};
+  const std::vector<int> filters{0, 1, 2, 3, 4, 0, 0, 1, 1, 2, 2, 3, 3, 4, 4, 4};
   for (int channels : {3, 4}) {
-    const int w = 37, h = 23;
-    std::vector<Bytes> rows(h, Bytes(std::size_t(w) * channels));
-    for (auto& r : rows)
-      for (auto& v : r) v = static_cast<unsigned char>(rng.uniform(0, 256));
-    const Bytes png =
-        make_png(w, h, 8, channels == 4 ? 6 : 2, rows, {}, {}, {0, 1, 2, 3, 4}, channels);
-    const cv::Mat m = decode_png_rgba8(png, "filters.png");
-    for (int y = 0; y < h; ++y) {
-      for (int x = 0; x < w; ++x) {
-        const unsigned char* src = &rows[y][std::size_t(x) * channels];
-        const cv::Vec4b want(src[0], src[1], src[2], channels == 4 ? src[3] : 255);
-        ASSERT_EQ(m.at<cv::Vec4b>(y, x), want) << channels << " channels, row " << y;
+    for (int w : {1, 2, 3, 4, 5, 37, 74}) {
+      const int h = 23;
+      const bool ties = w == 74;
+      std::vector<Bytes> rows(h, Bytes(std::size_t(w) * channels));
+      for (auto& r : rows)
+        for (auto& v : r)
+          v = ties ? few[rng.uniform(0, 5)] : static_cast<unsigned char>(rng.uniform(0, 256));
+      const Bytes png = make_png(w, h, 8, channels == 4 ? 6 : 2, rows, {}, {}, filters, channels);
+      const cv::Mat m = decode_png_rgba8(png, "filters.png");
+      for (int y = 0; y < h; ++y) {
+        for (int x = 0; x < w; ++x) {
+          const unsigned char* src = &rows[y][std::size_t(x) * channels];
+          const cv::Vec4b want(src[0], src[1], src[2], channels == 4 ? src[3] : 255);
+          ASSERT_EQ(m.at<cv::Vec4b>(y, x), want)
+              << channels << " channels, width " << w << ", row " << y << ", x " << x;
+        }
       }
     }
   }
