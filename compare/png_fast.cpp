@@ -2,7 +2,8 @@
 
 #include <fmt/format.h>
 #include <immintrin.h>
-#include <libdeflate.h>
+#include <isa-l/crc.h>
+#include <isa-l/igzip_lib.h>
 
 #include <cstdint>
 #include <cstring>
@@ -144,11 +145,6 @@ void unfilter(int type, const unsigned char* src, unsigned char* dst, const unsi
   }
 }
 
-struct Decompressor {
-  libdeflate_decompressor* d = libdeflate_alloc_decompressor();
-  ~Decompressor() { libdeflate_free_decompressor(d); }
-};
-
 FileError corrupt(const std::string& name, const char* why) {
   return FileError(fmt::format("{}: {}: truncated or corrupt PNG", name, why));
 }
@@ -185,7 +181,7 @@ std::optional<Inflated> inflate_png(std::span<const unsigned char> png, const st
     const unsigned char* type = &png[pos + 4];
     const std::uint32_t crc = be32(&png[pos + 8 + len]);
     const bool critical = !(type[0] & 0x20);
-    if (critical && libdeflate_crc32(0, type, len + 4) != crc) {
+    if (critical && crc32_gzip_refl(0, type, len + 4) != crc) {
       throw corrupt(name, "chunk CRC mismatch");
     }
     if (std::memcmp(type, "IDAT", 4) == 0) {
@@ -207,11 +203,17 @@ std::optional<Inflated> inflate_png(std::span<const unsigned char> png, const st
   }
   const int bpp = colour == 6 ? 4 : 3;
   Inflated out{PixelBuffer((std::size_t{w} * std::size_t(bpp) + 1) * h), w, h, bpp};
-  static thread_local Decompressor dec;
-  std::size_t got = 0;
-  const libdeflate_result rc = libdeflate_zlib_decompress(dec.d, stream.data(), stream.size(),
-                                                          out.raw.data(), out.raw.size(), &got);
-  if (rc != LIBDEFLATE_SUCCESS || got != out.raw.size()) {
+  // One call inflates the whole stream and checks the zlib header and Adler-32; the image
+  // must fill the buffer exactly (at most 1 GiB + h by kMaxImagePixels, so 32 bits suffice).
+  if (stream.size() > UINT32_MAX) throw corrupt(name, "image data over 4 GiB");
+  static thread_local inflate_state state;
+  isal_inflate_init(&state);
+  state.next_in = const_cast<unsigned char*>(stream.data());
+  state.avail_in = static_cast<std::uint32_t>(stream.size());
+  state.next_out = out.raw.data();
+  state.avail_out = static_cast<std::uint32_t>(out.raw.size());
+  state.crc_flag = ISAL_ZLIB;
+  if (isal_inflate_stateless(&state) != ISAL_DECOMP_OK || state.avail_out != 0) {
     throw corrupt(name, "bad or short image data");
   }
   for (std::uint32_t y = 0; y < h; ++y) {

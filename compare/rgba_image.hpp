@@ -1,5 +1,5 @@
 // The comparator's own image type: 8-bit RGBA, rows packed without padding. The comparator
-// depends on nothing but the standard library, libdeflate and libspng, because loading
+// depends on nothing but the standard library, ISA-L and libspng, because loading
 // libopencv_core and its dependencies costs ~6 ms at process start, a fifth of a 1080p
 // `aosuite compare`; compare/opencv.hpp views cv::Mat images as these without copying.
 #pragma once

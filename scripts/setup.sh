@@ -6,7 +6,7 @@ cd "$(dirname "$0")/.."
 
 PACKAGES=(
   g++ cmake make pkg-config
-  libspng-dev libdeflate-dev libopencv-core-dev libfmt-dev libcli11-dev nlohmann-json3-dev
+  libspng-dev libisal-dev libopencv-core-dev libfmt-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev libbenchmark-dev
   libosmesa6-dev libglm-dev libopenimageio-dev
   libtomlplusplus-dev libassimp-dev libxxhash-dev libembree-dev

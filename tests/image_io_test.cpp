@@ -32,7 +32,7 @@ TEST(DecodePng, EveryRowFilterForRgbAndRgba) {
   // Rows cycle through None, Sub, Up, Average and Paeth, then repeat each filter (a row
   // filtered against one filtered the same way); random samples exercise every predictor
   // branch, a few repeated values the ties between them, the widths every loop tail. RGBA
-  // and RGB 8-bit take the libdeflate path.
+  // and RGB 8-bit take the ISA-L path.
   cv::RNG rng(5);
   const unsigned char few[] = {0, 1, 127, 128, 255};
   const std::vector<int> filters{0, 1, 2, 3, 4, 0, 0, 1, 1, 2, 2, 3, 3, 4, 4, 4};
@@ -103,6 +103,42 @@ TEST(DecodePng, RejectsBadInputWithOneLineNamingTheFile) {
   bad_crc[40] ^= 0x55;
   expect_error(bad_crc, "CRC");
   expect_error(make_png(2, 2, 8, 6, std::vector<Bytes>(2, Bytes(8, 1)), {}, {}, {9}, 4), "filter");
+}
+
+// An 8x8 RGBA PNG whose IDAT holds `z` under a valid CRC, so only the zlib layer is wrong.
+Bytes rgba8x8_with_idat(const Bytes& z) {
+  Bytes out = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  Bytes ihdr;
+  test::put_u32(ihdr, 8);
+  test::put_u32(ihdr, 8);
+  ihdr.insert(ihdr.end(), {8, 6, 0, 0, 0});
+  test::put_chunk(out, "IHDR", ihdr);
+  test::put_chunk(out, "IDAT", z);
+  test::put_chunk(out, "IEND", {});
+  return out;
+}
+
+Bytes zlib(const Bytes& raw) {
+  uLongf len = compressBound(static_cast<uLong>(raw.size()));
+  Bytes z(len);
+  compress(z.data(), &len, raw.data(), static_cast<uLong>(raw.size()));
+  z.resize(len);
+  return z;
+}
+
+TEST(DecodePng, ZlibStreamErrorsBehindValidCrcs) {
+  const Bytes raw(8 * (1 + 8 * 4), 0);  // 8 rows: filter byte 0 and 32 zero samples
+  EXPECT_EQ(decode_png(rgba8x8_with_idat(zlib(raw)), "ok.png").width(), 8);
+  Bytes bad_adler = zlib(raw);
+  bad_adler.back() ^= 1;
+  expect_error(rgba8x8_with_idat(bad_adler), "corrupt");
+  expect_error(rgba8x8_with_idat(zlib(Bytes(raw.begin(), raw.end() - 33))), "corrupt");
+  Bytes longer = raw;
+  longer.resize(raw.size() + 33, 0);
+  expect_error(rgba8x8_with_idat(zlib(longer)), "corrupt");
+  Bytes bad_header = zlib(raw);
+  bad_header[0] = 0x79;  // compression method 9
+  expect_error(rgba8x8_with_idat(bad_header), "corrupt");
 }
 
 TEST(DecodePng, CheckGivesTheSizeOfWhatDecodes) {
