@@ -46,7 +46,7 @@ std::string input_hash(const Case& c, const std::string& gl_description) {
   const renderer::AoParams& p = c.params;
   h.add(c.view).add(c.technique).add(c.width).add(c.height);
   h.add(p.samples).add(p.radius).add(p.bias).add(p.intensity).add(p.contrast).add(p.blur);
-  h.add(p.level_weights);
+  h.add(p.level_weights).add(p.max_pixel_radius);
   h.add(p.viewpoints).add(p.pmi_resolution).add(p.importance_best);
   return h.hex();
 }

@@ -148,6 +148,9 @@ CaseResult skeleton(const Case& c) {
               {"contrast", fmt::format("{}", p.contrast)},
               {"blur", std::string(rd::blur_name(p.blur))},
               {"level_weights", fmt::format("{}", fmt::join(p.level_weights, ","))}};
+  if (c.technique == rd::Technique::kMssao) {
+    r.params["max_pixel_radius"] = fmt::format("{}", p.max_pixel_radius);
+  }
   if (c.technique == rd::Technique::kPmi) {
     r.params["viewpoints"] = std::to_string(p.viewpoints);
     r.params["pmi_resolution"] = std::to_string(p.pmi_resolution);

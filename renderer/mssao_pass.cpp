@@ -11,7 +11,6 @@ namespace aosuite::renderer {
 namespace {
 
 constexpr int kLevels = 5;
-constexpr float kMaxPixelRadius = 5;      // r_max: every level looks a few pixels around
 constexpr float kDepthThreshold = 0.05f;  // median downsampling: relative depth span
 
 struct Level {
@@ -63,7 +62,7 @@ class MssaoPass final : public AoPass {
       Camera level_camera = camera;
       level_camera.proj_scale = camera.proj_scale / static_cast<float>(1 << l);
       set_ao_uniforms(p, level_params, level_camera);
-      glProgramUniform1f(p, glGetUniformLocation(p, "u_max_pixel_radius"), kMaxPixelRadius);
+      glProgramUniform1f(p, glGetUniformLocation(p, "u_max_pixel_radius"), params.max_pixel_radius);
       glProgramUniform1i(p, glGetUniformLocation(p, "u_has_coarse"), l < top);
       glProgramUniform1i(p, glGetUniformLocation(p, "u_local"), level_params.intensity > 0);
       glProgramUniform1i(p, glGetUniformLocation(p, "u_finest"), l == 0);

@@ -100,6 +100,8 @@ void validate(const View& view, const RenderSettings& s) {
   if (p.pmi_resolution < 16 || p.pmi_resolution > 8192) fail("pmi_resolution must be 16..8192");
   if (p.importance_best < 0 || p.importance_best > p.viewpoints)
     fail("importance_best must be 0..viewpoints");
+  if (!(p.max_pixel_radius >= 1 && p.max_pixel_radius <= 1024))
+    fail("max_pixel_radius must be 1..1024 pixels");
   for (float w : p.level_weights) {
     if (!(w >= 0) || !std::isfinite(w)) fail("level weights must be finite and >= 0");
   }

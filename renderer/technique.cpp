@@ -96,9 +96,10 @@ T parse_number(std::string_view key, std::string_view value) {
 
 }  // namespace
 
-std::array<std::string_view, 10> param_names() {
-  return {"samples", "radius",        "bias",       "intensity",      "contrast",
-          "blur",    "level_weights", "viewpoints", "pmi_resolution", "importance_best"};
+std::array<std::string_view, 11> param_names() {
+  return {"samples",    "radius",         "bias",           "intensity",
+          "contrast",   "blur",           "level_weights",  "max_pixel_radius",
+          "viewpoints", "pmi_resolution", "importance_best"};
 }
 
 void set_param(AoParams& p, std::string_view key, std::string_view value) {
@@ -112,6 +113,8 @@ void set_param(AoParams& p, std::string_view key, std::string_view value) {
     p.intensity = parse_number<float>(key, value);
   } else if (key == "contrast") {
     p.contrast = parse_number<float>(key, value);
+  } else if (key == "max_pixel_radius") {
+    p.max_pixel_radius = parse_number<float>(key, value);
   } else if (key == "viewpoints") {
     p.viewpoints = parse_number<int>(key, value);
   } else if (key == "pmi_resolution") {

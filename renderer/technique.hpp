@@ -25,6 +25,10 @@ struct AoParams {
   float contrast = 1;   // k (Alchemy), power (UE4)
   // MSSAO: intensity of each of the five levels (full, 1/2, 1/4, 1/8, 1/16); 0 skips a level
   std::array<float, 5> level_weights{1.0f, 0.5f, 0.3f, 0.3f, 0.3f};
+  // MSSAO: r_max, the most pixels a level's kernel reaches at that level's resolution
+  // (Hoang & Low's cap, so each level costs the same). It is a pixel count, so at 3840x2160
+  // the five levels reach half as far in the scene as at 1920x1080; 10 there matches 5 here.
+  float max_pixel_radius = 5;
   Blur blur = Blur::kBilateral;
   // PMI: viewpoints on the subdivided icosahedron (12, 42, 162, 642 or 2562), the item
   // buffer's width in pixels (its height is 3/4 of it, as the paper's 640x480..2560x1920),
@@ -42,11 +46,11 @@ AoParams default_params(Technique t);
 
 // Sets one parameter from text, as suites and `--param key=value` give them: samples, radius,
 // bias, intensity, contrast, blur (none|gaussian|bilateral), level_weights ("1,0.5,0.3,0.3,0.3"),
-// viewpoints, pmi_resolution, importance_best.
+// max_pixel_radius, viewpoints, pmi_resolution, importance_best.
 // Throws std::invalid_argument naming the key and the problem (unknown key, not a number,
 // non-finite, out of range).
 void set_param(AoParams& params, std::string_view key, std::string_view value);
 // The names set_param accepts, in a stable order.
-std::array<std::string_view, 10> param_names();
+std::array<std::string_view, 11> param_names();
 
 }  // namespace aosuite::renderer
