@@ -55,7 +55,8 @@ class MssaoPass final : public AoPass {
     for (int l = top; l >= 0; --l) {
       PassTimer timer("mssao_level" + std::to_string(l));
       AoParams level_params = params;
-      level_params.intensity = params.level_weights[static_cast<std::size_t>(l)];
+      // `intensity` scales every level, as it scales the other techniques' AO.
+      level_params.intensity = params.intensity * params.level_weights[static_cast<std::size_t>(l)];
       // A coarse texel's position is off by up to its footprint, which grows 2x per level;
       // the depth-proportional bias grows with it, or flat ground self-occludes at level 4.
       level_params.bias = params.bias * static_cast<float>(1 << l);

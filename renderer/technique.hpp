@@ -23,7 +23,8 @@ struct AoParams {
   float bias = 0;       // technique-specific units, see each shader's header
   float intensity = 1;  // sigma
   float contrast = 1;   // k (Alchemy), power (UE4)
-  // MSSAO: intensity of each of the five levels (full, 1/2, 1/4, 1/8, 1/16); 0 skips a level
+  // MSSAO: intensity of each of the five levels (full, 1/2, 1/4, 1/8, 1/16), times
+  // `intensity`; 0 skips a level
   std::array<float, 5> level_weights{1.0f, 0.5f, 0.3f, 0.3f, 0.3f};
   // MSSAO: r_max, the most pixels a level's kernel reaches at that level's resolution
   // (Hoang & Low's cap, so each level costs the same). It is a pixel count, so at 3840x2160

@@ -248,6 +248,21 @@ TEST(Renderer, MssaoPixelCapScalesItsReachWithResolution) {
   EXPECT_LT(std::abs(high - low), std::abs(high_same_cap - low));
 }
 
+TEST(Renderer, IntensityDarkensEveryTechnique) {
+  // sigma scales the estimated occlusion in each technique (MSSAO: every level's weight):
+  // twice sigma adds at least 30 % of the mean occlusion, or of what is left below full
+  // occlusion where it saturates.
+  const Scene corner = builtin_scene("corner");
+  for (Technique t : kAll) {
+    RenderSettings s = settings(t, default_params(t).radius);
+    const double occlusion = 1 - geometry_stats(render(corner, 0, s)).mean;
+    s.params.intensity *= 2;
+    ASSERT_GT(occlusion, 1e-3) << technique_name(t);
+    const double more = 0.3 * std::min(occlusion, 1 - occlusion);
+    EXPECT_GT(1 - geometry_stats(render(corner, 0, s)).mean, occlusion + more) << technique_name(t);
+  }
+}
+
 TEST(Renderer, RejectsAbsurdSettings) {
   const Scene plane = builtin_scene("plane");
   RenderSettings s = settings(Technique::kAlchemy, 1);
