@@ -113,10 +113,10 @@ void sweep_view(rd::Renderer& renderer, const SweepGrid& g, const rd::Scene& sce
                   {}};
           if (g.unbounded)
             row.unbounded = ref::measure_error(t.images.ao, unbounded, t.images.depth, metric).all;
-          fmt::print(
-              "{} {} {}x{} {} s={} r={:g} k={:g}: {:.1f} ms, RMSE {:.4f} (unbounded {:.4f})\n",
-              row.scene, row.view, w, h, rd::technique_name(row.technique), samples, radius,
-              intensity, row.wall_ms, row.error.all.rmse, row.unbounded.rmse);
+          fmt::print("{} {} {}x{} {} s={} r={:g} k={:g}: {:.1f} ms, RMSE {:.4f}{}\n", row.scene,
+                     row.view, w, h, rd::technique_name(row.technique), samples, radius, intensity,
+                     row.wall_ms, row.error.all.rmse,
+                     g.unbounded ? fmt::format(" (unbounded {:.4f})", row.unbounded.rmse) : "");
           std::fflush(stdout);
           rows.push_back(std::move(row));
         }
