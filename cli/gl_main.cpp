@@ -1,6 +1,8 @@
 // Entry point of libaosuite_gl.so, which `aosuite` loads only for the commands that need
 // OpenGL: Mesa, LLVM and OpenImageIO cost hundreds of milliseconds of start-up that
 // `aosuite compare` must not pay. Each command here is also listed in main.cpp's kGlCommands.
+#include <cstdio>
+
 #include "cli/commands.hpp"
 
 extern "C" int aosuite_gl_main(int argc, char** argv) {
@@ -21,6 +23,10 @@ extern "C" int aosuite_gl_main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     const int code = app.exit(e);
     return code == 0 ? 0 : aosuite::cli::kExitError;
+  } catch (...) {
+    // The launcher has its own C++ runtime (cli/CMakeLists.txt): nothing may unwind into it.
+    std::fputs("aosuite: unexpected error\n", stderr);
+    return aosuite::cli::kExitError;
   }
   return rc;
 }

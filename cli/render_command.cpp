@@ -60,6 +60,9 @@ int run_render(const RenderArgs& a) {
                  {"contrast", s.params.contrast},
                  {"blur", rd::blur_name(s.params.blur)},
                  {"level_weights", s.params.level_weights}};
+  if (s.technique == rd::Technique::kMssao) {
+    j["params"]["max_pixel_radius"] = s.params.max_pixel_radius;
+  }
   if (s.technique == rd::Technique::kPmi) {
     j["params"]["viewpoints"] = s.params.viewpoints;
     j["params"]["pmi_resolution"] = s.params.pmi_resolution;

@@ -206,7 +206,12 @@ std::optional<Inflated> inflate_png(std::span<const unsigned char> png, const st
   // One call inflates the whole stream and checks the zlib header and Adler-32; the image
   // must fill the buffer exactly (at most 1 GiB + h by kMaxImagePixels, so 32 bits suffice).
   if (stream.size() > UINT32_MAX) throw corrupt(name, "image data over 4 GiB");
-  static thread_local inflate_state state;
+  // zlib's window size (CINFO) above 32 KB is invalid; ISA-L does not check it, zlib does.
+  if (stream.size() < 2 || (stream[0] >> 4) > 7) throw corrupt(name, "bad image data");
+  // 87 KB of state, allocated by the threads that decode rather than by every thread.
+  static thread_local std::unique_ptr<inflate_state> held;
+  if (!held) held = std::make_unique<inflate_state>();
+  inflate_state& state = *held;
   isal_inflate_init(&state);
   state.next_in = const_cast<unsigned char*>(stream.data());
   state.avail_in = static_cast<std::uint32_t>(stream.size());

@@ -31,10 +31,10 @@ TEST(DecodePng, GreyGreyAlphaPaletteAndSixteenBit) {
 TEST(DecodePng, EveryRowFilterForRgbAndRgba) {
   // Rows cycle through None, Sub, Up, Average and Paeth, then repeat each filter (a row
   // filtered against one filtered the same way); random samples exercise every predictor
-  // branch, a few repeated values the ties between them, the widths every loop tail. RGBA
+  // branch, values 0-3 the ties between predictors, the widths every loop tail. RGBA
   // and RGB 8-bit take the ISA-L path.
   cv::RNG rng(5);
-  const unsigned char few[] = {0, 1, 127, 128, 255};
+  // Ties that change Paeth's choice need a + 2b = 3c, which a small contiguous range hits.
   const std::vector<int> filters{0, 1, 2, 3, 4, 0, 0, 1, 1, 2, 2, 3, 3, 4, 4, 4};
   for (int channels : {3, 4}) {
     for (int w : {1, 2, 3, 4, 5, 37, 74}) {
@@ -43,7 +43,7 @@ TEST(DecodePng, EveryRowFilterForRgbAndRgba) {
       std::vector<Bytes> rows(h, Bytes(std::size_t(w) * channels));
       for (auto& r : rows)
         for (auto& v : r)
-          v = ties ? few[rng.uniform(0, 5)] : static_cast<unsigned char>(rng.uniform(0, 256));
+          v = static_cast<unsigned char>(ties ? rng.uniform(0, 4) : rng.uniform(0, 256));
       const Bytes png = make_png(w, h, 8, channels == 4 ? 6 : 2, rows, {}, {}, filters, channels);
       const cv::Mat m = decode_png_rgba8(png, "filters.png");
       for (int y = 0; y < h; ++y) {
@@ -139,6 +139,9 @@ TEST(DecodePng, ZlibStreamErrorsBehindValidCrcs) {
   Bytes bad_header = zlib(raw);
   bad_header[0] = 0x79;  // compression method 9
   expect_error(rgba8x8_with_idat(bad_header), "corrupt");
+  Bytes big_window = zlib(raw);
+  big_window[0] = 0x88, big_window[1] = 0x1c;  // CINFO 8 (a 64 KB window), FCHECK still valid
+  expect_error(rgba8x8_with_idat(big_window), "corrupt");
 }
 
 TEST(DecodePng, CheckGivesTheSizeOfWhatDecodes) {
