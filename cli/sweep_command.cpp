@@ -278,8 +278,9 @@ std::pair<int, int> parse_size(const std::string& text) {
 }
 
 int run_sweep(const std::string& grid_file, const std::vector<std::string>& resolutions,
-              const std::string& out) {
+              const std::vector<std::string>& scenes, const std::string& out) {
   SweepGrid g = read_sweep_grid(grid_file);
+  if (!scenes.empty()) g.scenes = scenes;
   if (!resolutions.empty()) {
     g.resolutions.clear();
     for (const std::string& r : resolutions) g.resolutions.push_back(parse_size(r));
@@ -327,14 +328,17 @@ void add_sweep_command(CLI::App& app, int& rc) {
   auto grid = std::make_shared<std::string>();
   auto out = std::make_shared<std::string>("reports/sweep");
   auto resolutions = std::make_shared<std::vector<std::string>>();
+  auto scenes = std::make_shared<std::vector<std::string>>();
   CLI::App* cmd = app.add_subcommand(
       "sweep", "Time and error of each technique over a samples x radius x resolution grid");
   cmd->add_option("grid", *grid, "grid file (suites/sweep_ci.toml, suites/sweep_full.toml)")
       ->required();
   cmd->add_option("--out", *out, "output directory")->capture_default_str();
   cmd->add_option("--resolution", *resolutions, "WxH, repeatable: replaces the grid's resolutions");
-  guarded(cmd, rc, "sweep",
-          [grid, resolutions, out] { return run_sweep(*grid, *resolutions, *out); });
+  cmd->add_option("--scene", *scenes, "scene name or file, repeatable: replaces the grid's scenes");
+  guarded(cmd, rc, "sweep", [grid, resolutions, scenes, out] {
+    return run_sweep(*grid, *resolutions, *scenes, *out);
+  });
 }
 
 }  // namespace aosuite::cli

@@ -62,6 +62,26 @@ TEST(SweepCli, CiGridHasFiniteErrorsInEveryRow) {
   EXPECT_FALSE(fs::is_empty(dir / "cache"));
 }
 
+TEST(SweepCli, SceneAndResolutionReplaceTheGrids) {
+  const fs::path dir = scratch("scene");
+  const Outcome o =
+      run_shell(command(dir, "sweep " + std::string(AOSUITE_SOURCE_DIR) +
+                                 "/suites/sweep_ci.toml --scene plane --resolution 64x36 --out " +
+                                 (dir / "out").string()),
+                dir);
+  ASSERT_EQ(o.rc, 0) << o.err;
+  std::ifstream csv(dir / "out" / "sweep.csv");
+  std::string line;
+  std::getline(csv, line);
+  int rows = 0;
+  for (; std::getline(csv, line); ++rows) {
+    const std::vector<std::string> cells = split(line);
+    EXPECT_EQ(cells.at(0), "plane") << line;
+    EXPECT_EQ(cells.at(3) + "x" + cells.at(4), "64x36") << line;
+  }
+  EXPECT_EQ(rows, 4 * 4 * 2);  // the plane's two views
+}
+
 TEST(SweepCli, ErrorPrintsJsonAndWritesTheReference) {
   const fs::path dir = scratch("error");
   const Outcome o = run_shell(
@@ -88,6 +108,11 @@ TEST(SweepCli, BadInputExitsTwo) {
   Outcome o = run_shell(command(dir, "sweep " + (dir / "bad.toml").string()), dir);
   EXPECT_EQ(o.rc, 2);
   EXPECT_NE(o.err.find("bad.toml"), std::string::npos) << o.err;
+  o = run_shell(command(dir, "sweep " + std::string(AOSUITE_SOURCE_DIR) +
+                                 "/suites/sweep_ci.toml --scene atlantis"),
+                dir);
+  EXPECT_EQ(o.rc, 2);
+  EXPECT_NE(o.err.find("atlantis"), std::string::npos) << o.err;
   o = run_shell(command(dir, "error --technique alchemy --variant bent --width 32 --height 18"),
                 dir);
   EXPECT_EQ(o.rc, 2);
