@@ -106,40 +106,23 @@ TEST(DecodePng, RejectsBadInputWithOneLineNamingTheFile) {
 }
 
 // An 8x8 RGBA PNG whose IDAT holds `z` under a valid CRC, so only the zlib layer is wrong.
-Bytes rgba8x8_with_idat(const Bytes& z) {
-  Bytes out = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
-  Bytes ihdr;
-  test::put_u32(ihdr, 8);
-  test::put_u32(ihdr, 8);
-  ihdr.insert(ihdr.end(), {8, 6, 0, 0, 0});
-  test::put_chunk(out, "IHDR", ihdr);
-  test::put_chunk(out, "IDAT", z);
-  test::put_chunk(out, "IEND", {});
-  return out;
-}
-
-Bytes zlib(const Bytes& raw) {
-  uLongf len = compressBound(static_cast<uLong>(raw.size()));
-  Bytes z(len);
-  compress(z.data(), &len, raw.data(), static_cast<uLong>(raw.size()));
-  z.resize(len);
-  return z;
-}
+Bytes rgba8x8_with_idat(const Bytes& z) { return test::png_with_idat(8, 8, 8, 6, z); }
 
 TEST(DecodePng, ZlibStreamErrorsBehindValidCrcs) {
   const Bytes raw(8 * (1 + 8 * 4), 0);  // 8 rows: filter byte 0 and 32 zero samples
-  EXPECT_EQ(decode_png(rgba8x8_with_idat(zlib(raw)), "ok.png").width(), 8);
-  Bytes bad_adler = zlib(raw);
+  EXPECT_EQ(decode_png(rgba8x8_with_idat(test::zlib_compress(raw)), "ok.png").width(), 8);
+  Bytes bad_adler = test::zlib_compress(raw);
   bad_adler.back() ^= 1;
   expect_error(rgba8x8_with_idat(bad_adler), "corrupt");
-  expect_error(rgba8x8_with_idat(zlib(Bytes(raw.begin(), raw.end() - 33))), "corrupt");
+  expect_error(rgba8x8_with_idat(test::zlib_compress(Bytes(raw.begin(), raw.end() - 33))),
+               "corrupt");
   Bytes longer = raw;
   longer.resize(raw.size() + 33, 0);
-  expect_error(rgba8x8_with_idat(zlib(longer)), "corrupt");
-  Bytes bad_header = zlib(raw);
+  expect_error(rgba8x8_with_idat(test::zlib_compress(longer)), "corrupt");
+  Bytes bad_header = test::zlib_compress(raw);
   bad_header[0] = 0x79;  // compression method 9
   expect_error(rgba8x8_with_idat(bad_header), "corrupt");
-  Bytes big_window = zlib(raw);
+  Bytes big_window = test::zlib_compress(raw);
   big_window[0] = 0x88, big_window[1] = 0x1c;  // CINFO 8 (a 64 KB window), FCHECK still valid
   expect_error(rgba8x8_with_idat(big_window), "corrupt");
 }

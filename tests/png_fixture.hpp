@@ -48,11 +48,17 @@ inline Bytes filter_row(int type, const Bytes& row, const Bytes& prev, int bpp) 
   return out;
 }
 
-// `rows` holds the raw samples of each row (no filter byte). Row y is written with filter
-// `filters[y % filters.size()]` (bpp = bytes per pixel, for the filters that need it).
-inline Bytes make_png(std::uint32_t w, std::uint32_t h, int bit_depth, int color_type,
-                      const std::vector<Bytes>& rows, const Bytes& plte = {},
-                      const Bytes& trns = {}, const std::vector<int>& filters = {0}, int bpp = 1) {
+inline Bytes zlib_compress(const Bytes& raw) {
+  uLongf len = compressBound(static_cast<uLong>(raw.size()));
+  Bytes z(len);
+  compress(z.data(), &len, raw.data(), static_cast<uLong>(raw.size()));
+  z.resize(len);
+  return z;
+}
+
+// A PNG of the given header whose IDAT holds `z` as is (none when empty), under valid CRCs.
+inline Bytes png_with_idat(std::uint32_t w, std::uint32_t h, int bit_depth, int color_type,
+                           const Bytes& z, const Bytes& plte = {}, const Bytes& trns = {}) {
   Bytes out = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
   Bytes ihdr;
   put_u32(ihdr, w);
@@ -62,6 +68,16 @@ inline Bytes make_png(std::uint32_t w, std::uint32_t h, int bit_depth, int color
   put_chunk(out, "IHDR", ihdr);
   if (!plte.empty()) put_chunk(out, "PLTE", plte);
   if (!trns.empty()) put_chunk(out, "tRNS", trns);
+  if (!z.empty()) put_chunk(out, "IDAT", z);
+  put_chunk(out, "IEND", {});
+  return out;
+}
+
+// `rows` holds the raw samples of each row (no filter byte). Row y is written with filter
+// `filters[y % filters.size()]` (bpp = bytes per pixel, for the filters that need it).
+inline Bytes make_png(std::uint32_t w, std::uint32_t h, int bit_depth, int color_type,
+                      const std::vector<Bytes>& rows, const Bytes& plte = {},
+                      const Bytes& trns = {}, const std::vector<int>& filters = {0}, int bpp = 1) {
   Bytes raw;
   for (std::size_t y = 0; y < rows.size(); ++y) {
     const int f = filters[y % filters.size()];
@@ -69,13 +85,8 @@ inline Bytes make_png(std::uint32_t w, std::uint32_t h, int bit_depth, int color
     const Bytes filtered = filter_row(f, rows[y], y ? rows[y - 1] : Bytes{}, bpp);
     raw.insert(raw.end(), filtered.begin(), filtered.end());
   }
-  uLongf len = compressBound(static_cast<uLong>(raw.size()));
-  Bytes z(len);
-  compress(z.data(), &len, raw.data(), static_cast<uLong>(raw.size()));
-  z.resize(len);
-  if (!rows.empty()) put_chunk(out, "IDAT", z);
-  put_chunk(out, "IEND", {});
-  return out;
+  return png_with_idat(w, h, bit_depth, color_type, rows.empty() ? Bytes{} : zlib_compress(raw),
+                       plte, trns);
 }
 
 inline void write_bytes(const std::filesystem::path& p, const Bytes& b) {
