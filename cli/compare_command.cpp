@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "cli/commands.hpp"
+#include "compare/band_compare.hpp"
 #include "compare/image_io.hpp"
 #include "compare/resemble.hpp"
 #include "compare/resemble_json.hpp"
@@ -111,6 +112,7 @@ rs::Result compare_files(const std::string& a, const std::string& b, rs::Options
     return rs::compare_identical(check_png(bytes_a, a));
   }
   o.produce_diff = !diff_path.empty();
+  if (auto r = compare_png_bands(bytes_a, a, bytes_b, b, o)) return *std::move(r);
   RgbaImage img_a, img_b;
   if (identical) {
     img_a = img_b = decode_png(bytes_a, a);  // the diff image still needs the pixels, once

@@ -78,25 +78,26 @@ RowTally count_row(const unsigned char* a, const unsigned char* b, int width,
   return t;
 }
 
-MismatchTally count_rows(const unsigned char* a, const unsigned char* b, int width, int y0, int y1,
-                         const int* min_delta) {
+}  // namespace
+
+MismatchTally count_band(const unsigned char* a, const unsigned char* b, int width, int rows,
+                         int first_row, const std::array<int, 4>& min_delta) {
   MismatchTally t;
   const std::size_t stride = std::size_t(width) * 4;
-  for (int y = y0; y < y1; ++y) {
-    const RowTally r = count_row(a + y * stride, b + y * stride, width, min_delta);
-    t.add(y, r.count, r.first, r.last);
+  for (int y = 0; y < rows; ++y) {
+    const RowTally r = count_row(a + y * stride, b + y * stride, width, min_delta.data());
+    t.add(first_row + y, r.count, r.first, r.last);
   }
   return t;
 }
-
-}  // namespace
 
 MismatchTally count_mismatches(const unsigned char* a, const unsigned char* b, int width,
                                int height, const std::array<int, 4>& min_delta) {
   MismatchTally total;
   std::mutex m;
   parallel_rows(width, height, [&](int y0, int y1) {
-    const MismatchTally t = count_rows(a, b, width, y0, y1, min_delta.data());
+    const std::size_t offset = std::size_t(y0) * std::size_t(width) * 4;
+    const MismatchTally t = count_band(a + offset, b + offset, width, y1 - y0, y0, min_delta);
     std::lock_guard lock(m);
     total.merge(t);
   });

@@ -38,6 +38,11 @@ struct MismatchTally {
 MismatchTally count_mismatches(const unsigned char* a, const unsigned char* b, int width,
                                int height, const std::array<int, 4>& min_delta);
 
+// The same on one thread for `rows` rows that are rows first_row.. of their images: a and b
+// point at the band's first row.
+MismatchTally count_band(const unsigned char* a, const unsigned char* b, int width, int rows,
+                         int first_row, const std::array<int, 4>& min_delta);
+
 // Plain per-pixel reference of the same function, for tests and benchmarks.
 MismatchTally count_mismatches_scalar(const unsigned char* a, const unsigned char* b, int width,
                                       int height, const std::array<int, 4>& min_delta);

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <cstring>
 #include <memory>
+#include <stdexcept>
 #include <vector>
 
 #include "compare/image_io.hpp"
@@ -105,7 +106,7 @@ void unup(const unsigned char* src, unsigned char* dst, const unsigned char* pre
   for (; i < len; ++i) dst[i] = static_cast<unsigned char>(src[i] + prev[i]);
 }
 
-// Reverses one row's filter (0..4, checked by inflate_png) from src into dst; `prev` is the
+// Reverses one row's filter (0..4, checked by inflate_rows) from src into dst; `prev` is the
 // previous unfiltered row (zeros for row 0). dst is src, or lies before it in the same
 // buffer: each byte is written only after the bytes of src at and below its address have
 // been read, going forward.
@@ -149,19 +150,15 @@ FileError corrupt(const std::string& name, const char* why) {
   return FileError(fmt::format("{}: {}: truncated or corrupt PNG", name, why));
 }
 
-// A PNG of this decoder's kind, inflated: `raw` holds each row's filter byte and bytes.
-struct Inflated {
-  PixelBuffer raw;
-  std::uint32_t width = 0, height = 0;
-  int bpp = 0;
-  std::size_t row_len() const { return std::size_t{width} * std::size_t(bpp); }
-};
+}  // namespace
 
-// Parses and inflates, checking everything a full decode would except the pixel values
-// themselves: chunk CRCs, the zlib stream and its Adler-32, the length, each row's filter.
-std::optional<Inflated> inflate_png(std::span<const unsigned char> png, const std::string& name) {
-  // Signature (checked by the caller), then IHDR must come first.
-  if (png.size() < 8 + 25 || be32(&png[8]) != 13 || std::memcmp(&png[12], "IHDR", 4) != 0) {
+// Parses the chunks and checks everything a full decode would except the pixel values:
+// chunk CRCs here, the zlib stream, its Adler-32 and each row's filter as rows are read.
+std::optional<PngRows> PngRows::open(std::span<const unsigned char> png, const std::string& name) {
+  // The signature, then IHDR must come first.
+  static constexpr unsigned char kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  if (png.size() < 8 + 25 || std::memcmp(png.data(), kSignature, 8) != 0 || be32(&png[8]) != 13 ||
+      std::memcmp(&png[12], "IHDR", 4) != 0) {
     return std::nullopt;
   }
   const std::uint32_t w = be32(&png[16]), h = be32(&png[20]);
@@ -171,6 +168,7 @@ std::optional<Inflated> inflate_png(std::span<const unsigned char> png, const st
     return std::nullopt;  // libspng decodes (or refuses) everything else
   }
   // Gather IDAT, verifying each chunk's CRC as libspng would.
+  PngRows out(name);
   std::vector<std::span<const unsigned char>> idat;
   std::size_t pos = 8, total = 0;
   bool ended = false;
@@ -194,78 +192,109 @@ std::optional<Inflated> inflate_png(std::span<const unsigned char> png, const st
     pos += 12 + len;
   }
   if (idat.empty()) throw corrupt(name, "no image data");
-  std::vector<unsigned char> joined;
   std::span<const unsigned char> stream = idat.front();
   if (idat.size() > 1) {
-    joined.reserve(total);
-    for (const auto& s : idat) joined.insert(joined.end(), s.begin(), s.end());
-    stream = joined;
+    out.joined_.reserve(total);
+    for (const auto& s : idat) out.joined_.insert(out.joined_.end(), s.begin(), s.end());
+    stream = out.joined_;
   }
-  const int bpp = colour == 6 ? 4 : 3;
-  Inflated out{PixelBuffer((std::size_t{w} * std::size_t(bpp) + 1) * h), w, h, bpp};
-  // One call inflates the whole stream and checks the zlib header and Adler-32; the image
-  // must fill the buffer exactly (at most 1 GiB + h by kMaxImagePixels, so 32 bits suffice).
   if (stream.size() > UINT32_MAX) throw corrupt(name, "image data over 4 GiB");
   // zlib's window size (CINFO) above 32 KB is invalid; ISA-L does not check it, zlib does.
   if (stream.size() < 2 || (stream[0] >> 4) > 7) throw corrupt(name, "bad image data");
-  // 87 KB of state, allocated by the threads that decode rather than by every thread.
-  static thread_local std::unique_ptr<inflate_state> held;
-  if (!held) held = std::make_unique<inflate_state>();
-  inflate_state& state = *held;
-  isal_inflate_init(&state);
-  state.next_in = const_cast<unsigned char*>(stream.data());
-  state.avail_in = static_cast<std::uint32_t>(stream.size());
-  state.next_out = out.raw.data();
-  state.avail_out = static_cast<std::uint32_t>(out.raw.size());
-  state.crc_flag = ISAL_ZLIB;
-  if (isal_inflate_stateless(&state) != ISAL_DECOMP_OK || state.avail_out != 0) {
-    throw corrupt(name, "bad or short image data");
-  }
-  for (std::uint32_t y = 0; y < h; ++y) {
-    if (out.raw.data()[y * (out.row_len() + 1)] > 4) throw corrupt(name, "unknown row filter");
-  }
+  out.width_ = w, out.height_ = h, out.bpp_ = colour == 6 ? 4 : 3;
+  out.prev_.assign(out.row_len(), 0);
+  out.state_ = std::make_unique<inflate_state>();
+  isal_inflate_init(out.state_.get());
+  out.state_->next_in = const_cast<unsigned char*>(stream.data());
+  out.state_->avail_in = static_cast<std::uint32_t>(stream.size());
+  out.state_->crc_flag = ISAL_ZLIB;
   return out;
 }
 
-}  // namespace
+void PngRows::inflate_rows(unsigned char* raw, std::uint32_t rows) {
+  if (rows > height_ - row_) throw std::logic_error("PngRows: read past the last row");
+  // At most 1 GiB + h bytes in all by kMaxImagePixels, so 32 bits suffice.
+  const auto want = static_cast<std::uint32_t>((row_len() + 1) * rows);
+  inflate_state& s = *state_;
+  s.next_out = raw;
+  s.avail_out = want;
+  // isal_inflate returns when the output is full or the input ends; the rest of the
+  // stream after the last row is checked by finish().
+  if (isal_inflate(&s) != ISAL_DECOMP_OK || s.avail_out != 0) {
+    throw corrupt(name_, "bad or short image data");
+  }
+  for (std::uint32_t y = 0; y < rows; ++y) {
+    if (raw[y * (row_len() + 1)] > 4) throw corrupt(name_, "unknown row filter");
+  }
+  row_ += rows;
+  if (row_ == height_) finish();
+}
+
+// After the last row the stream must end, with nothing more to inflate and a good Adler-32.
+void PngRows::finish() {
+  inflate_state& s = *state_;
+  unsigned char extra = 0;
+  s.next_out = &extra;
+  s.avail_out = 1;
+  const int rc = isal_inflate(&s);
+  if (rc != ISAL_DECOMP_OK || s.avail_out != 1) throw corrupt(name_, "bad image data");
+  if (s.block_state != ISAL_BLOCK_FINISH) throw corrupt(name_, "image data ends early");
+}
+
+void PngRows::read(unsigned char* out, std::uint32_t rows) {
+  const std::size_t len = row_len();
+  inflate_rows(out, rows);
+  // Row y unfilters to y * len, y + 1 bytes left of where it was inflated, so the same
+  // memory becomes the pixels: no second buffer and no extra pass. Each byte is written
+  // only after the bytes it overwrites have been read.
+  const unsigned char* prev = prev_.data();
+  for (std::uint32_t y = 0; y < rows; ++y) {
+    const unsigned char* row = out + y * (len + 1) + 1;
+    unsigned char* dst = out + y * len;
+    if (bpp_ == 4) {
+      unfilter<4>(row[-1], row, dst, prev, len);
+    } else {
+      unfilter<3>(row[-1], row, dst, prev, len);
+    }
+    prev = dst;
+  }
+  std::memcpy(prev_.data(), prev, len);
+  if (bpp_ == 4) return;
+  // RGB to RGBA from the last pixel back, as each pixel moves right.
+  for (std::size_t i = std::size_t{rows} * width_; i-- > 0;) {
+    const unsigned char r = out[3 * i], g = out[3 * i + 1], b = out[3 * i + 2];
+    out[4 * i] = r, out[4 * i + 1] = g, out[4 * i + 2] = b, out[4 * i + 3] = 255;
+  }
+}
+
+void PngRows::skip(std::uint32_t rows) {
+  constexpr std::size_t kScratch = 64 << 10;  // 16 pages; ISA-L's cost per call stays small
+  const auto band =
+      static_cast<std::uint32_t>(std::max<std::size_t>(1, kScratch / (row_len() + 1)));
+  std::vector<unsigned char> raw(std::size_t{std::min(band, rows)} * (row_len() + 1));
+  while (rows > 0) {
+    const std::uint32_t n = std::min(band, rows);
+    inflate_rows(raw.data(), n);
+    rows -= n;
+  }
+}
 
 std::optional<ImageSize> check_png_fast(std::span<const unsigned char> png,
                                         const std::string& name) {
-  const std::optional<Inflated> in = inflate_png(png, name);
-  if (!in) return std::nullopt;
-  return ImageSize{static_cast<int>(in->width), static_cast<int>(in->height)};
+  std::optional<PngRows> rows = PngRows::open(png, name);
+  if (!rows) return std::nullopt;
+  rows->skip(rows->height());
+  return ImageSize{static_cast<int>(rows->width()), static_cast<int>(rows->height())};
 }
 
 std::optional<RgbaImage> decode_png_fast(std::span<const unsigned char> png,
                                          const std::string& name) {
-  std::optional<Inflated> in = inflate_png(png, name);
-  if (!in) return std::nullopt;
-  const std::uint32_t w = in->width, h = in->height;
-  const std::size_t row_len = in->row_len();
-  unsigned char* raw = in->raw.data();
-  // RGBA unfilters row y to y * row_len, y + 1 bytes left of where it was inflated, so the
-  // same memory becomes the image: no second image-sized buffer and no extra pass.
-  const std::vector<unsigned char> zeros(row_len, 0);
-  const unsigned char* prev = zeros.data();
-  PixelBuffer rgb_out(in->bpp == 4 ? 0 : std::size_t{w} * h * 4);
-  for (std::uint32_t y = 0; y < h; ++y) {
-    unsigned char* row = raw + y * (row_len + 1) + 1;
-    if (in->bpp == 4) {
-      unsigned char* dst = raw + y * row_len;
-      unfilter<4>(row[-1], row, dst, prev, row_len);
-      prev = dst;
-    } else {
-      unfilter<3>(row[-1], row, row, prev, row_len);
-      unsigned char* dst = rgb_out.data() + std::size_t{y} * w * 4;
-      for (std::uint32_t x = 0; x < w; ++x) {
-        dst[4 * x] = row[3 * x], dst[4 * x + 1] = row[3 * x + 1], dst[4 * x + 2] = row[3 * x + 2];
-        dst[4 * x + 3] = 255;
-      }
-      prev = row;
-    }
-  }
-  return RgbaImage(in->bpp == 4 ? std::move(in->raw) : std::move(rgb_out), static_cast<int>(w),
-                   static_cast<int>(h));
+  std::optional<PngRows> rows = PngRows::open(png, name);
+  if (!rows) return std::nullopt;
+  const std::uint32_t w = rows->width(), h = rows->height();
+  PixelBuffer pixels(rows->band_bytes(h));
+  rows->read(pixels.data(), h);
+  return RgbaImage(std::move(pixels), static_cast<int>(w), static_cast<int>(h));
 }
 
 }  // namespace aosuite

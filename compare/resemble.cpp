@@ -274,10 +274,9 @@ MismatchTally truncate_early(const std::vector<unsigned char>& mask, int w, int 
 
 }  // namespace
 
-namespace {
-
-void finish(Result& r, const MismatchTally& tally, RgbaView a, RgbaView b,
-            std::chrono::steady_clock::time_point start) {
+Result result_from_tally(const MismatchTally& tally, ImageSize a, ImageSize b,
+                         std::chrono::steady_clock::time_point start) {
+  Result r;
   const int w = std::max(a.width, b.width), h = std::max(a.height, b.height);
   r.mismatch_count = tally.count;
   r.raw_mismatch_percentage = (double(tally.count) / (double(h) * double(w))) * 100;
@@ -289,16 +288,32 @@ void finish(Result& r, const MismatchTally& tally, RgbaView a, RgbaView b,
       tally.count ? Bounds{tally.top, tally.left, tally.bottom, tally.right} : Bounds{h, w, 0, 0};
   r.analysis_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return r;
 }
 
-}  // namespace
+std::optional<std::array<int, 4>> count_only_thresholds(const Options& options) {
+  const Settings s = resolve(options);
+  const double early = options.return_early_threshold;
+  const bool compare_only = early != 0 && !std::isnan(early);
+  const bool has_area =
+      options.bounding_boxes || options.ignored_boxes || options.ignore_areas_colored_with;
+  if (s.ignore_colors || s.ignore_antialiasing || has_area || compare_only ||
+      options.produce_diff || options.canvas_alpha != CanvasAlpha::kNone) {
+    return std::nullopt;
+  }
+  const Tolerance& t = s.tolerance;
+  std::array<int, 4> min_delta{};
+  const double tol[4] = {t.red, t.green, t.blue, t.alpha};
+  for (int c = 0; c < 4; ++c) {
+    int d = 1;
+    while (d < 256 && similar(0, d, tol[c])) ++d;
+    min_delta[c] = d;
+  }
+  return min_delta;
+}
 
 Result compare_identical(ImageSize size) {
-  const auto start = std::chrono::steady_clock::now();
-  const RgbaView v{nullptr, size.width, size.height};
-  Result r;
-  finish(r, {}, v, v, start);
-  return r;
+  return result_from_tally({}, size, size, std::chrono::steady_clock::now());
 }
 
 Result compare(RgbaView a, RgbaView b, const Options& options) {
@@ -314,28 +329,19 @@ Result compare(RgbaView a, RgbaView b, const Options& options) {
   const double early = options.return_early_threshold;
   const bool compare_only = early != 0 && !std::isnan(early);
   const bool stops_early = compare_only && !s.ignore_colors;
-  const bool has_area =
-      options.bounding_boxes || options.ignored_boxes || options.ignore_areas_colored_with;
 
-  Result r;
+  RgbaImage diff_image;
   MismatchTally tally;
-  if (!s.ignore_colors && !s.ignore_antialiasing && !has_area &&
-      !(options.produce_diff && !compare_only) && !stops_early) {
-    // The common case: only thresholds decide, so the vectorised counter serves.
-    const Tolerance& t = s.tolerance;
-    std::array<int, 4> min_delta{};
-    const double tol[4] = {t.red, t.green, t.blue, t.alpha};
-    for (int c = 0; c < 4; ++c) {
-      int d = 1;
-      while (d < 256 && similar(0, d, tol[c])) ++d;
-      min_delta[c] = d;
-    }
-    tally = count_mismatches(d1.data, d2.data, w, h, min_delta);
+  // The canvas model and padding are already applied to d1 and d2.
+  Options plain = options;
+  plain.canvas_alpha = CanvasAlpha::kNone;
+  if (const auto min_delta = count_only_thresholds(plain)) {
+    tally = count_mismatches(d1.data, d2.data, w, h, *min_delta);
   } else {
-    if (options.produce_diff && !compare_only) r.diff = RgbaImage(w, h);
+    if (options.produce_diff && !compare_only) diff_image = RgbaImage(w, h);
     std::vector<unsigned char> mask(stops_early ? std::size_t(w) * std::size_t(h) : 0);
     const PixelJudge judge(d1, d2, options, s);
-    unsigned char* diff = r.diff.empty() ? nullptr : r.diff.data();
+    unsigned char* diff = diff_image.empty() ? nullptr : diff_image.data();
     std::mutex m;
     parallel_rows(w, h, [&](int y0, int y1) {
       MismatchTally local;
@@ -352,7 +358,8 @@ Result compare(RgbaView a, RgbaView b, const Options& options) {
     if (stops_early) tally = truncate_early(mask, w, h, skip, early);
   }
 
-  finish(r, tally, a, b, start);
+  Result r = result_from_tally(tally, {a.width, a.height}, {b.width, b.height}, start);
+  r.diff = std::move(diff_image);
   return r;
 }
 

@@ -3,6 +3,8 @@
 // percentage bit for bit, same bounds, same diff image bytes.
 #pragma once
 
+#include <array>
+#include <chrono>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -10,6 +12,7 @@
 #include <vector>
 
 #include "compare/canvas_alpha.hpp"
+#include "compare/count_kernel.hpp"
 #include "compare/rgba_image.hpp"
 
 namespace aosuite::resemble {
@@ -91,6 +94,16 @@ struct Result {
 // a and b as decoded from the files (the canvas model in options decides what a browser
 // would have made of translucent pixels).
 Result compare(RgbaView a, RgbaView b, const Options& options);
+
+// The per-channel differences at which a pixel mismatches when these thresholds alone decide
+// (no antialiasing or colours mode, no areas, no diff image, no early return, no canvas
+// model): then a comparison is count_mismatches() and result_from_tally(); else nullopt.
+std::optional<std::array<int, 4>> count_only_thresholds(const Options& options);
+
+// The result of a comparison of images of sizes a and b with these mismatches, timed from
+// `start`. No diff image.
+Result result_from_tally(const MismatchTally& tally, ImageSize a, ImageSize b,
+                         std::chrono::steady_clock::time_point start);
 
 // What compare(x, x, options) returns for every image x of this size, without reading it:
 // an image never differs from itself, whatever the modes, tolerances, areas or canvas model

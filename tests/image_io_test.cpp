@@ -2,6 +2,7 @@
 #include <unistd.h>
 
 #include "compare/opencv.hpp"
+#include "compare/png_fast.hpp"
 #include "png_fixture.hpp"
 
 namespace aosuite {
@@ -52,6 +53,43 @@ TEST(DecodePng, EveryRowFilterForRgbAndRgba) {
           const cv::Vec4b want(src[0], src[1], src[2], channels == 4 ? src[3] : 255);
           ASSERT_EQ(m.at<cv::Vec4b>(y, x), want)
               << channels << " channels, width " << w << ", row " << y << ", x " << x;
+        }
+      }
+    }
+  }
+}
+
+// Reading a PNG a few rows at a time gives the rows decode_png gives, whatever the band
+// size, with the zlib stream split over several IDAT chunks or in one.
+TEST(PngRows, AnyBandSizeGivesTheWholeImage) {
+  cv::RNG rng(9);
+  const std::vector<int> filters{0, 1, 2, 3, 4, 4, 1, 3, 2};
+  for (int channels : {3, 4}) {
+    const int w = 37, h = 23;
+    std::vector<Bytes> rows(h, Bytes(std::size_t(w) * channels));
+    for (auto& r : rows)
+      for (auto& v : r) v = static_cast<unsigned char>(rng.uniform(0, 256));
+    const int type = channels == 4 ? 6 : 2;
+    const Bytes one_idat = make_png(w, h, 8, type, rows, {}, {}, filters, channels);
+    const RgbaImage want = decode_png(one_idat, "one.png");
+    // The same stream in IDAT chunks of 1, 2 and the rest of its bytes.
+    const std::size_t at = 8 + 25, len = test::be32(&one_idat[at]);
+    const Bytes z(one_idat.begin() + at + 8, one_idat.begin() + at + 8 + long(len));
+    Bytes split(one_idat.begin(), one_idat.begin() + long(at));
+    test::put_chunk(split, "IDAT", Bytes(z.begin(), z.begin() + 1));
+    test::put_chunk(split, "IDAT", Bytes(z.begin() + 1, z.begin() + 3));
+    test::put_chunk(split, "IDAT", Bytes(z.begin() + 3, z.end()));
+    test::put_chunk(split, "IEND", {});
+    for (const Bytes* png : {&one_idat, static_cast<const Bytes*>(&split)}) {
+      for (std::uint32_t band : {1u, 2u, 5u, 23u}) {
+        std::optional<PngRows> reader = PngRows::open(*png, "rows.png");
+        ASSERT_TRUE(reader);
+        Bytes buf(reader->band_bytes(band));
+        for (std::uint32_t y = 0; y < std::uint32_t(h); y += band) {
+          const std::uint32_t n = std::min(band, std::uint32_t(h) - y);
+          reader->read(buf.data(), n);
+          ASSERT_EQ(std::memcmp(buf.data(), want.view().row(int(y)), std::size_t(n) * w * 4), 0)
+              << channels << " channels, band " << band << ", rows from " << y;
         }
       }
     }
@@ -125,6 +163,8 @@ TEST(DecodePng, ZlibStreamErrorsBehindValidCrcs) {
   Bytes big_window = test::zlib_compress(raw);
   big_window[0] = 0x88, big_window[1] = 0x1c;  // CINFO 8 (a 64 KB window), FCHECK still valid
   expect_error(rgba8x8_with_idat(big_window), "corrupt");
+  // every row there but the stream never ends: flushed, no final block, no checksum
+  expect_error(rgba8x8_with_idat(test::zlib_compress(raw, Z_SYNC_FLUSH)), "corrupt");
 }
 
 TEST(DecodePng, CheckGivesTheSizeOfWhatDecodes) {

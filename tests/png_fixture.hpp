@@ -48,11 +48,23 @@ inline Bytes filter_row(int type, const Bytes& row, const Bytes& prev, int bpp) 
   return out;
 }
 
-inline Bytes zlib_compress(const Bytes& raw) {
-  uLongf len = compressBound(static_cast<uLong>(raw.size()));
-  Bytes z(len);
-  compress(z.data(), &len, raw.data(), static_cast<uLong>(raw.size()));
-  z.resize(len);
+inline std::uint32_t be32(const unsigned char* p) {
+  return std::uint32_t{p[0]} << 24 | std::uint32_t{p[1]} << 16 | std::uint32_t{p[2]} << 8 | p[3];
+}
+
+// A zlib stream of `raw`; with flush = Z_SYNC_FLUSH it is left unfinished (no final block,
+// no Adler-32), as a writer that stopped early leaves it.
+inline Bytes zlib_compress(const Bytes& raw, int flush = Z_FINISH) {
+  z_stream zs{};
+  deflateInit(&zs, Z_DEFAULT_COMPRESSION);
+  Bytes z(deflateBound(&zs, static_cast<uLong>(raw.size())) + 16);
+  zs.next_in = const_cast<unsigned char*>(raw.data());
+  zs.avail_in = static_cast<uInt>(raw.size());
+  zs.next_out = z.data();
+  zs.avail_out = static_cast<uInt>(z.size());
+  deflate(&zs, flush);
+  z.resize(zs.total_out);
+  deflateEnd(&zs);
   return z;
 }
 
