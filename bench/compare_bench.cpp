@@ -1,10 +1,14 @@
-// Comparator kernels per mode at 1080p and 4K, PNG decode, and a memory-bandwidth baseline
-// (one read of both images) that the kernel is measured against.
+// Comparator kernels per mode at 1080p and 4K, PNG decode, two PNG files compared whole or
+// in bands, and a memory-bandwidth baseline (one read of both images) that the kernel is
+// measured against.
 #include <benchmark/benchmark.h>
+#include <sys/mman.h>
 
 #include <atomic>
+#include <future>
 #include <opencv2/core/utility.hpp>
 
+#include "compare/band_compare.hpp"
 #include "compare/count_kernel.hpp"
 #include "compare/opencv.hpp"
 #include "compare/parallel_rows.hpp"
@@ -93,6 +97,47 @@ void BM_DecodePng(benchmark::State& state) {
   state.SetItemsProcessed(static_cast<int64_t>(state.iterations()) * a.rows * a.cols);
 }
 
+// `aosuite compare A B` without its process: both PNGs decoded whole (on two threads) and
+// compared, against compare_png_bands counting them a band at a time. The whole path also
+// pays the kernel's zeroing of 2 x 33 MB of fresh pages at 4K every iteration, as a process
+// does once.
+void BM_ComparePngFiles(benchmark::State& state, bool bands) {
+  const auto& [a, b] = pair_for(static_cast<int>(state.range(0)));
+  const std::vector<unsigned char> pa = aosuite::encode_png_rgba8(a, 6);
+  const std::vector<unsigned char> pb = aosuite::encode_png_rgba8(b, 6);
+  aosuite::resemble::Options o;
+  o.modes = {Mode::kLess};
+  for (auto _ : state) {
+    if (bands) {
+      benchmark::DoNotOptimize(aosuite::compare_png_bands(pa, "a", pb, "b", o));
+    } else {
+      auto decoding_b =
+          std::async(std::launch::async, [&] { return aosuite::decode_png(pb, "b"); });
+      const aosuite::RgbaImage img_a = aosuite::decode_png(pa, "a");
+      benchmark::DoNotOptimize(aosuite::resemble::compare(img_a, decoding_b.get(), o));
+    }
+  }
+  state.SetItemsProcessed(static_cast<int64_t>(state.iterations()) * a.rows * a.cols);
+}
+
+// What a process pays to fault in 2 MB of fresh memory as 4 KB pages or as one huge page
+// (PixelBuffer's choice): on the project's VMs each 4 KB fault costs about 10 us.
+void BM_FaultIn2MB(benchmark::State& state, bool huge) {
+  constexpr std::size_t kBytes = std::size_t{2} << 20;
+  for (auto _ : state) {
+    if (huge) {
+      aosuite::PixelBuffer buffer(kBytes);  // pre-faulted, huge pages from 512 KB up
+      benchmark::DoNotOptimize(buffer.data());
+    } else {
+      void* p = ::mmap(nullptr, kBytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+      ::madvise(p, kBytes, MADV_NOHUGEPAGE);
+      auto* bytes = static_cast<volatile unsigned char*>(p);
+      for (std::size_t i = 0; i < kBytes; i += 4096) bytes[i] = 1;
+      ::munmap(p, kBytes);
+    }
+  }
+}
+
 void BM_EncodeDiffPng(benchmark::State& state) {
   const auto& a = pair_for(static_cast<int>(state.range(0))).first;
   for (auto _ : state) benchmark::DoNotOptimize(aosuite::encode_png_rgba8(a, 3));
@@ -109,7 +154,11 @@ BENCHMARK_CAPTURE(BM_Compare, antialiasing, Mode::kAntialiasing, false)->SIZES;
 BENCHMARK_CAPTURE(BM_Compare, less_with_diff, Mode::kLess, true)->SIZES;
 BENCHMARK(BM_CountScalarReference)->SIZES;
 BENCHMARK(BM_DecodePng)->SIZES;
+BENCHMARK_CAPTURE(BM_ComparePngFiles, whole, false)->SIZES;
+BENCHMARK_CAPTURE(BM_ComparePngFiles, bands, true)->SIZES;
 BENCHMARK(BM_EncodeDiffPng)->SIZES;
+BENCHMARK_CAPTURE(BM_FaultIn2MB, small_pages, false)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_FaultIn2MB, huge_page, true)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 
