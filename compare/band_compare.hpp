@@ -16,7 +16,9 @@ namespace aosuite {
 // Resemble's result for the two files (no diff image), when the options reduce to
 // per-channel thresholds (resemble::count_only_thresholds) and both files are same-sized
 // PNGs of the fast decoder's kind; otherwise nullopt, and the caller decodes them whole.
-// Throws FileError, naming the file, for a corrupt one.
+// analysis_ms covers the decoding too: here it is one pass with the counting.
+// Throws FileError, naming the file, for a corrupt one (either file when both are: the
+// first error found stops both decoders).
 std::optional<resemble::Result> compare_png_bands(std::span<const unsigned char> a,
                                                   const std::string& name_a,
                                                   std::span<const unsigned char> b,

@@ -212,7 +212,9 @@ std::optional<PngRows> PngRows::open(std::span<const unsigned char> png, const s
 }
 
 void PngRows::inflate_rows(unsigned char* raw, std::uint32_t rows) {
-  if (rows > height_ - row_) throw std::logic_error("PngRows: read past the last row");
+  if (rows == 0 || rows > height_ - row_) {
+    throw std::logic_error("PngRows: reads must be 1.. rows left");
+  }
   // At most 1 GiB + h bytes in all by kMaxImagePixels, so 32 bits suffice.
   const auto want = static_cast<std::uint32_t>((row_len() + 1) * rows);
   inflate_state& s = *state_;

@@ -37,7 +37,8 @@ class PngRows {
   std::size_t band_bytes(std::uint32_t rows) const {
     return std::size_t{rows} * std::max(row_len() + 1, std::size_t{width_} * 4);
   }
-  // The next `rows` rows as packed RGBA8 at the start of `out` (band_bytes(rows) long).
+  // The next `rows` rows (1..rows left) as packed RGBA8 at the start of `out`
+  // (band_bytes(rows) long).
   // Reading the last row also checks that the stream ends there with a good checksum.
   // Throws FileError for bad data, naming the file.
   void read(unsigned char* out, std::uint32_t rows);
