@@ -14,8 +14,9 @@
 namespace aosuite {
 
 // Resemble's result for the two files (no diff image), when the options reduce to
-// per-channel thresholds (resemble::count_only_thresholds) and both files are same-sized
-// PNGs of the fast decoder's kind; otherwise nullopt, and the caller decodes them whole.
+// per-channel thresholds (resemble::count_only_thresholds) without a canvas model and both
+// files are same-sized PNGs of the fast decoder's kind; otherwise nullopt, and the caller
+// decodes them whole.
 // analysis_ms covers the decoding too: here it is one pass with the counting.
 // Throws FileError, naming the file, for a corrupt one (either file when both are: the
 // first error found stops both decoders).

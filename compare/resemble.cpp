@@ -298,7 +298,7 @@ std::optional<std::array<int, 4>> count_only_thresholds(const Options& options) 
   const bool has_area =
       options.bounding_boxes || options.ignored_boxes || options.ignore_areas_colored_with;
   if (s.ignore_colors || s.ignore_antialiasing || has_area || compare_only ||
-      options.produce_diff || options.canvas_alpha != CanvasAlpha::kNone) {
+      options.produce_diff) {
     return std::nullopt;
   }
   const Tolerance& t = s.tolerance;
@@ -332,10 +332,7 @@ Result compare(RgbaView a, RgbaView b, const Options& options) {
 
   RgbaImage diff_image;
   MismatchTally tally;
-  // The canvas model and padding are already applied to d1 and d2.
-  Options plain = options;
-  plain.canvas_alpha = CanvasAlpha::kNone;
-  if (const auto min_delta = count_only_thresholds(plain)) {
+  if (const auto min_delta = count_only_thresholds(options)) {
     tally = count_mismatches(d1.data, d2.data, w, h, *min_delta);
   } else {
     if (options.produce_diff && !compare_only) diff_image = RgbaImage(w, h);

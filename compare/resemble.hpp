@@ -96,8 +96,9 @@ struct Result {
 Result compare(RgbaView a, RgbaView b, const Options& options);
 
 // The per-channel differences at which a pixel mismatches when these thresholds alone decide
-// (no antialiasing or colours mode, no areas, no diff image, no early return, no canvas
-// model): then a comparison is count_mismatches() and result_from_tally(); else nullopt.
+// (no antialiasing or colours mode, no areas, no diff image, no early return): then a
+// comparison of the images as seen (after the canvas model) is count_mismatches() and
+// result_from_tally(); else nullopt.
 std::optional<std::array<int, 4>> count_only_thresholds(const Options& options);
 
 // The result of a comparison of images of sizes a and b with these mismatches, timed from
