@@ -7,6 +7,7 @@
 
 #include <filesystem>
 
+#include "bench/bench_main.hpp"
 #include "renderer/pmi_item_buffer.hpp"
 #include "renderer/renderer.hpp"
 #include "renderer/viewpoint_sphere.hpp"
@@ -72,4 +73,4 @@ BENCHMARK(BM_Channel)
 
 }  // namespace
 
-BENCHMARK_MAIN();
+AOSUITE_RENDERING_BENCHMARK_MAIN()

@@ -3,6 +3,7 @@
 // Alchemy's default radius (ao), and unbounded.
 #include <benchmark/benchmark.h>
 
+#include "bench/bench_main.hpp"
 #include "reference/reference_ao.hpp"
 #include "renderer/renderer.hpp"
 
@@ -49,4 +50,4 @@ BENCHMARK_CAPTURE(BM_Reference, unbounded, ref::Variant::kUnbounded)
 
 }  // namespace
 
-BENCHMARK_MAIN();
+AOSUITE_RENDERING_BENCHMARK_MAIN()

@@ -5,6 +5,7 @@
 
 #include <map>
 
+#include "bench/bench_main.hpp"
 #include "renderer/renderer.hpp"
 #include "renderer/scene.hpp"
 
@@ -87,4 +88,4 @@ BENCHMARK(BM_MostlySky)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 
-BENCHMARK_MAIN();
+AOSUITE_RENDERING_BENCHMARK_MAIN()

@@ -1,17 +1,14 @@
 // aosuite: a thin command line over the library; each subcommand lives in its own file.
 #include <dlfcn.h>
 #include <fmt/format.h>
-#include <unistd.h>
 
 #include <array>
-#include <cstdlib>
 #include <cstring>
 #include <exception>
 #include <filesystem>
-#include <string>
-#include <string_view>
 
 #include "cli/commands.hpp"
+#include "renderer/huge_page_malloc.hpp"
 
 namespace {
 
@@ -42,25 +39,8 @@ bool is_gl_command(const char* name) {
   return false;
 }
 
-// Mesa, LLVM and the read-back buffers fault in memory a 4 KB page at a time, and on the VMs
-// this runs on a page fault costs about 10 us (bench/README.md): 57,700 faults for one
-// 1080p render process, 2,400 more per frame. glibc backs malloc with transparent huge pages
-// when told so by a tunable, which it reads only at start-up, so the GL commands run in a
-// re-executed process with it set: 15,400 faults, and a frame about 15 % faster
-// (`perf stat -e page-faults aosuite render --technique sao --runs 11 --outputs ao_float`).
-void reexec_with_huge_page_malloc(char** argv) {
-  constexpr std::string_view kTunable = "glibc.malloc.hugetlb=1";
-  const char* tunables = std::getenv("GLIBC_TUNABLES");
-  const std::string current = tunables ? tunables : "";
-  if (current.find("glibc.malloc.hugetlb") != std::string::npos) return;  // set, or re-executed
-  const std::string wanted =
-      current.empty() ? std::string(kTunable) : current + ":" + std::string(kTunable);
-  if (setenv("GLIBC_TUNABLES", wanted.c_str(), 1) != 0) return;
-  execv("/proc/self/exe", argv);  // returns only on failure: then go on without
-}
-
 int run_gl_command(int argc, char** argv) {
-  reexec_with_huge_page_malloc(argv);
+  aosuite::reexec_with_huge_page_malloc(argv);  // see there: ~20 % off a render process
   const std::filesystem::path lib =
       std::filesystem::read_symlink("/proc/self/exe").parent_path() / "libaosuite_gl.so";
   void* handle = dlopen(lib.c_str(), RTLD_NOW | RTLD_LOCAL);
