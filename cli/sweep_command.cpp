@@ -37,7 +37,21 @@ struct Row {
   double gl_ms = 0, wall_ms = 0;
   ref::ErrorReport error;
   ref::ErrorStats unbounded;
+  std::map<std::string, std::string> params;  // the grid's fixed parameters
 };
+
+// The grid's fixed parameters as text: "blur=none level_weights=1,0,0,0,0".
+std::string params_text(const Row& r) {
+  std::string out;
+  for (const auto& [k, v] : r.params) out += (out.empty() ? "" : " ") + k + "=" + v;
+  return out;
+}
+
+// The technique as the console and Markdown name it: "mssao (max_pixel_radius=10)".
+std::string label(const Row& r) {
+  const std::string name(rd::technique_name(r.technique));
+  return r.params.empty() ? name : fmt::format("{} ({})", name, params_text(r));
+}
 
 struct Timed {
   rd::Images images;
@@ -101,6 +115,7 @@ void sweep_view(rd::Renderer& renderer, const SweepGrid& g, const rd::Scene& sce
           rd::RenderSettings s;
           s.width = w, s.height = h, s.technique = tg.technique;
           s.params = rd::default_params(tg.technique);
+          for (const auto& [k, v] : tg.params) rd::set_param(s.params, k, v);
           s.params.samples = samples, s.params.radius = radius, s.params.intensity = intensity;
           s.outputs = rd::parse_outputs("ao_float");
           const Timed t = render_timed(renderer, scene, view, s, g.runs);
@@ -110,12 +125,12 @@ void sweep_view(rd::Renderer& renderer, const SweepGrid& g, const rd::Scene& sce
                   samples,    radius,
                   intensity,  t.gl_ms,
                   t.wall_ms,  ref::measure_error(t.images.ao, reference, t.images.depth, metric),
-                  {}};
+                  {},         tg.params};
           if (g.unbounded)
             row.unbounded = ref::measure_error(t.images.ao, unbounded, t.images.depth, metric).all;
           fmt::print("{} {} {}x{} {} s={} r={:g} k={:g}: {:.1f} ms, RMSE {:.4f}{}\n", row.scene,
-                     row.view, w, h, rd::technique_name(row.technique), samples, radius, intensity,
-                     row.wall_ms, row.error.all.rmse,
+                     row.view, w, h, label(row), samples, radius, intensity, row.wall_ms,
+                     row.error.all.rmse,
                      g.unbounded ? fmt::format(" (unbounded {:.4f})", row.unbounded.rmse) : "");
           std::fflush(stdout);
           rows.push_back(std::move(row));
@@ -129,7 +144,7 @@ std::string csv(const std::vector<Row>& rows, bool unbounded) {
   std::string out =
       "scene,view,technique,width,height,samples,radius,intensity,ao_gl_ms,ao_wall_ms,pixels,rmse,"
       "mae,bias,psnr,ssim,noise_floor,edge_rmse,interior_rmse,rmse_unbounded,bias_unbounded,"
-      "ssim_unbounded\n";
+      "ssim_unbounded,params\n";
   for (const Row& r : rows) {
     const ref::ErrorStats& a = r.error.all;
     out += fmt::format(
@@ -138,9 +153,11 @@ std::string csv(const std::vector<Row>& rows, bool unbounded) {
         r.scene, r.view, rd::technique_name(r.technique), r.width, r.height, r.samples, r.radius,
         r.intensity, r.gl_ms, r.wall_ms, a.pixels, a.rmse, a.mae, a.bias, a.psnr, a.ssim,
         a.noise_floor, r.error.edge.rmse, r.error.interior.rmse);
-    out += unbounded ? fmt::format(",{:.6f},{:.6f},{:.6f}\n", r.unbounded.rmse, r.unbounded.bias,
+    out += unbounded ? fmt::format(",{:.6f},{:.6f},{:.6f}", r.unbounded.rmse, r.unbounded.bias,
                                    r.unbounded.ssim)
-                     : ",,,\n";
+                     : ",,,";
+    // Quoted: list values hold commas.
+    out += r.params.empty() ? ",\n" : fmt::format(",\"{}\"\n", params_text(r));
   }
   return out;
 }
@@ -158,9 +175,9 @@ std::string markdown(const std::vector<Row>& rows, const nlohmann::ordered_json&
     md += fmt::format(
         "| {} | {} | {} | {}×{} | {} | {:g} | {:g} | {:.1f} | {:.4f} | {:.4f} | {:+.4f} | "
         "{:.3f} | {:.4f} | {:.4f} | {} |\n",
-        r.scene, r.view, rd::technique_name(r.technique), r.width, r.height, r.samples, r.radius,
-        r.intensity, r.wall_ms, a.rmse, a.noise_floor, a.bias, a.ssim, r.error.edge.rmse,
-        r.error.interior.rmse, unbounded ? fmt::format("{:.4f}", r.unbounded.rmse) : "–");
+        r.scene, r.view, label(r), r.width, r.height, r.samples, r.radius, r.intensity, r.wall_ms,
+        a.rmse, a.noise_floor, a.bias, a.ssim, r.error.edge.rmse, r.error.interior.rmse,
+        unbounded ? fmt::format("{:.4f}", r.unbounded.rmse) : "–");
   }
   md +=
       "\n| scene | technique | size | fitted on | s | r | k | RMSE there | evaluated on | RMSE "
@@ -186,6 +203,7 @@ nlohmann::ordered_json row_json(const Row& r, bool unbounded) {
                            {"samples", r.samples},
                            {"radius", r.radius},
                            {"intensity", r.intensity},
+                           {"params", r.params},
                            {"ao_gl_ms", r.gl_ms},
                            {"ao_wall_ms", r.wall_ms},
                            {"error", to_json(r.error)}};

@@ -4,6 +4,7 @@
 #include <toml++/toml.h>
 
 #include "compare/image_io.hpp"
+#include "renderer/toml_reader.hpp"
 
 namespace aosuite::cli {
 namespace {
@@ -33,6 +34,32 @@ std::vector<std::string> strings(const toml::node_view<const toml::node>& node,
     const std::optional<std::string> v = n.value<std::string>();
     if (!v) throw std::invalid_argument(where + " must hold strings");
     out.push_back(*v);
+  }
+  return out;
+}
+
+// A technique's fixed parameters, each checked against the technique's defaults now so a
+// bad key or value fails before anything renders.
+std::map<std::string, std::string> fixed_params(const toml::node_view<const toml::node>& node,
+                                                renderer::Technique technique, const fs::path& path,
+                                                const std::string& where) {
+  const toml::table* table = node.as_table();
+  if (!table) throw std::invalid_argument(where + " must be a table, e.g. { blur = \"none\" }");
+  const TomlReader reader(path);
+  std::map<std::string, std::string> out;
+  for (const auto& [key, value] : *table) {
+    const std::string k(key.str());
+    if (k == "samples" || k == "radius" || k == "intensity") {
+      throw std::invalid_argument(fmt::format("{}.{}: {} is one of the grid's axes", where, k, k));
+    }
+    const std::string text = reader.param(value);
+    renderer::AoParams probe = renderer::default_params(technique);
+    try {
+      renderer::set_param(probe, k, text);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(fmt::format("{}.{}: {}", where, k, e.what()));
+    }
+    out[k] = text;
   }
   return out;
 }
@@ -69,8 +96,10 @@ SweepGrid parse(const toml::table& t, const fs::path& path) {
     TechniqueGrid tg{renderer::parse_technique(name.str()),
                      numbers<int>(tv["samples"], where + ".samples"),
                      numbers<float>(tv["radius"], where + ".radius"),
+                     {},
                      {}};
     if (tv["intensity"]) tg.intensities = numbers<float>(tv["intensity"], where + ".intensity");
+    if (tv["params"]) tg.params = fixed_params(tv["params"], tg.technique, path, where + ".params");
     g.techniques.push_back(std::move(tg));
   }
   return g;

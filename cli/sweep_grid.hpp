@@ -1,5 +1,6 @@
 // The grid `aosuite sweep` runs: scenes (and views), resolutions, and per technique the
-// samples x radius (x intensity) values, read from a TOML file (suites/sweep_*.toml).
+// samples x radius (x intensity) values and any fixed parameters, read from a TOML file
+// (suites/sweep_*.toml).
 #pragma once
 
 #include <filesystem>
@@ -17,6 +18,8 @@ struct TechniqueGrid {
   std::vector<int> samples;
   std::vector<float> radii;
   std::vector<float> intensities;  // empty: the technique's default
+  // Other parameters, the same for every configuration (renderer::set_param keys and text).
+  std::map<std::string, std::string> params;
 };
 
 struct SweepGrid {

@@ -17,26 +17,10 @@ namespace fs = std::filesystem;
 
 using Reader = TomlReader;
 
-// A parameter as renderer::set_param takes it: text; arrays become comma-separated lists.
-std::string param_text(const Reader& r, const toml::node& n) {
-  if (const toml::array* a = n.as_array()) {
-    std::string out;
-    for (const toml::node& e : *a) {
-      if (!out.empty()) out += ',';
-      out += param_text(r, e);
-    }
-    return out;
-  }
-  if (auto s = n.value_exact<std::string>()) return *s;
-  if (auto i = n.value_exact<std::int64_t>()) return std::to_string(*i);
-  if (auto d = n.value_exact<double>()) return fmt::format("{}", *d);
-  r.fail(n.source(), "a parameter must be a number, a string or an array of numbers");
-}
-
 void read_params(const Reader& r, const toml::node& n, std::map<std::string, std::string>& out,
                  std::map<std::string, toml::source_region>& where) {
   for (const auto& [key, value] : r.table(n, "params")) {
-    out[std::string(key.str())] = param_text(r, value);
+    out[std::string(key.str())] = r.param(value);
     where[std::string(key.str())] = value.source();
   }
 }

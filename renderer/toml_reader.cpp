@@ -34,6 +34,21 @@ std::string TomlReader::string(const toml::node& n, std::string_view what) const
   fail(n.source(), fmt::format("{} must be a string", what));
 }
 
+std::string TomlReader::param(const toml::node& n) const {
+  if (const toml::array* a = n.as_array()) {
+    std::string out;
+    for (const toml::node& e : *a) {
+      if (!out.empty()) out += ',';
+      out += param(e);
+    }
+    return out;
+  }
+  if (auto s = n.value_exact<std::string>()) return *s;
+  if (auto i = n.value_exact<std::int64_t>()) return std::to_string(*i);
+  if (auto d = n.value_exact<double>()) return fmt::format("{}", *d);
+  fail(n.source(), "a parameter must be a number, a string or an array of numbers");
+}
+
 bool TomlReader::boolean(const toml::node& n, std::string_view what) const {
   if (auto v = n.value_exact<bool>()) return *v;
   fail(n.source(), fmt::format("{} must be true or false", what));

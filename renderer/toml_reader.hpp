@@ -35,6 +35,9 @@ class TomlReader {
   // A non-empty array of strings.
   std::vector<std::string> strings(const toml::node& n, std::string_view what) const;
   const toml::table& table(const toml::node& n, std::string_view what) const;
+  // A renderer parameter as renderer::set_param takes it: a number or string as text, an
+  // array as a comma-separated list.
+  std::string param(const toml::node& n) const;
   // A non-empty array of tables ([[what]]).
   std::vector<const toml::table*> tables(const toml::node& n, std::string_view what) const;
   // A string that is safe as part of a file name: letters, digits, _ - . (not leading '.').
