@@ -33,7 +33,8 @@ cv::Mat grey_rgba(const cv::Mat& ao) {
   cv::Mat out(ao.size(), CV_8UC4);
   for (int y = 0; y < ao.rows; ++y) {
     for (int x = 0; x < ao.cols; ++x) {
-      const auto v = cv::saturate_cast<unsigned char>(ao.at<float>(y, x) * 255.0f + 0.5f);
+      // saturate_cast rounds to nearest itself.
+      const auto v = cv::saturate_cast<unsigned char>(ao.at<float>(y, x) * 255.0f);
       out.at<cv::Vec4b>(y, x) = {v, v, v, 255};
     }
   }

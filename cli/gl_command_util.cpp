@@ -1,10 +1,12 @@
 #include "cli/gl_command_util.hpp"
 
-#include <OpenImageIO/imageio.h>
+#include <dlfcn.h>
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
 #include <algorithm>
+#include <string>
+#include <system_error>
 
 #include "compare/image_io.hpp"
 
@@ -53,13 +55,33 @@ rd::RenderSettings case_settings(const CaseOptions& o) {
   return s;
 }
 
+// OpenImageIO lives in libaosuite_exr.so beside this library (cli/exr_writer.cpp), opened
+// on the first EXR: commands that write none skip its ~360 ms of loading.
 void write_exr(const fs::path& path, const cv::Mat& image) {
+  using Write = int (*)(const char*, int, int, const float*, char*, std::size_t);
+  struct Writer {
+    Write write = nullptr;
+    std::string error;
+  };
+  static const Writer writer = [] {
+    const fs::path lib = fs::read_symlink("/proc/self/exe").parent_path() / "libaosuite_exr.so";
+    Writer w;
+    if (void* handle = dlopen(lib.c_str(), RTLD_NOW | RTLD_LOCAL)) {
+      w.write = reinterpret_cast<Write>(dlsym(handle, "aosuite_write_exr"));
+    }
+    if (!w.write) w.error = dlerror();
+    return w;
+  }();
+  if (!writer.write) {
+    throw FileError(fmt::format("{}: cannot write EXR: {}", path.string(), writer.error));
+  }
+  CV_Assert(image.type() == CV_32FC1 && image.isContinuous());
   const fs::path tmp = path.parent_path() / fmt::format(".{}.tmp.exr", path.filename().string());
-  auto out = OIIO::ImageOutput::create(tmp.string());
-  const OIIO::ImageSpec spec(image.cols, image.rows, 1, OIIO::TypeDesc::FLOAT);
-  if (!out || !out->open(tmp.string(), spec) ||
-      !out->write_image(OIIO::TypeDesc::FLOAT, image.data) || !out->close()) {
-    throw FileError(fmt::format("{}: cannot write EXR: {}", path.string(), OIIO::geterror()));
+  char err[512] = {};
+  if (writer.write(tmp.c_str(), image.cols, image.rows, image.ptr<float>(), err, sizeof err) != 0) {
+    std::error_code ignored;
+    fs::remove(tmp, ignored);
+    throw FileError(fmt::format("{}: cannot write EXR: {}", path.string(), err));
   }
   fs::rename(tmp, path);
 }

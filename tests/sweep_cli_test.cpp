@@ -1,5 +1,6 @@
 // `aosuite sweep` on the reduced CI grid and `aosuite error` end to end: every row's errors
 // are finite, outputs are written, and bad input exits 2 with a message.
+#include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -100,11 +101,28 @@ TEST(SweepCli, ErrorPrintsJsonAndWritesTheReference) {
   const auto j = nlohmann::json::parse(o.out);
   EXPECT_EQ(j["reference"]["radius"], 10.0);  // SAO's default radius
   EXPECT_GT(j["error"]["all"]["pixels"].get<int>(), 0);
+  const std::string stem =
+      j["scene"].get<std::string>() + "_" + j["view"].get<std::string>() + "_sao_";
   for (const char* f : {"reference.exr", "reference.png", "ao.png", "error.png"})
-    EXPECT_TRUE(fs::exists(
-        dir / "out" /
-        (j["scene"].get<std::string>() + "_" + j["view"].get<std::string>() + "_sao_" + f)))
-        << f;
+    EXPECT_TRUE(fs::exists(dir / "out" / (stem + f))) << f;
+  // The EXR (written through libaosuite_exr.so) holds the float reference the PNG shows.
+  auto read = [&](const std::string& f, OIIO::TypeDesc type, std::vector<float>& px) {
+    auto in = OIIO::ImageInput::open((dir / "out" / (stem + f)).string());
+    ASSERT_TRUE(in) << f << ": " << OIIO::geterror();
+    const OIIO::ImageSpec& spec = in->spec();
+    EXPECT_EQ(spec.width, 96);
+    EXPECT_EQ(spec.height, 54);
+    px.resize(std::size_t(spec.width) * std::size_t(spec.height));
+    ASSERT_TRUE(in->read_image(
+        0, 0, 0, 1, type == OIIO::TypeDesc::UINT8 ? OIIO::TypeDesc::FLOAT : type, px.data()));
+  };
+  std::vector<float> exr, png;
+  read("reference.exr", OIIO::TypeDesc::FLOAT, exr);
+  read("reference.png", OIIO::TypeDesc::UINT8, png);  // as 0..1
+  ASSERT_EQ(exr.size(), png.size());
+  for (std::size_t i = 0; i < exr.size(); ++i) {
+    ASSERT_NEAR(exr[i], png[i], 0.5 / 255 + 1e-6) << "pixel " << i;
+  }
 }
 
 // Fixed parameters reach every configuration of their technique and the outputs name them.
