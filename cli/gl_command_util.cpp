@@ -1,6 +1,5 @@
 #include "cli/gl_command_util.hpp"
 
-#include <dlfcn.h>
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
@@ -8,6 +7,7 @@
 #include <string>
 #include <system_error>
 
+#include "cli/sibling_library.hpp"
 #include "compare/image_io.hpp"
 
 namespace aosuite::cli {
@@ -58,18 +58,14 @@ rd::RenderSettings case_settings(const CaseOptions& o) {
 // OpenImageIO lives in libaosuite_exr.so beside this library (cli/exr_writer.cpp), opened
 // on the first EXR: commands that write none skip its ~360 ms of loading.
 void write_exr(const fs::path& path, const cv::Mat& image) {
-  using Write = int (*)(const char*, int, int, const float*, char*, std::size_t);
+  using Write = int(const char*, int, int, const float*, char*, std::size_t);
   struct Writer {
-    Write write = nullptr;
+    Write* write = nullptr;
     std::string error;
   };
   static const Writer writer = [] {
-    const fs::path lib = fs::read_symlink("/proc/self/exe").parent_path() / "libaosuite_exr.so";
     Writer w;
-    if (void* handle = dlopen(lib.c_str(), RTLD_NOW | RTLD_LOCAL)) {
-      w.write = reinterpret_cast<Write>(dlsym(handle, "aosuite_write_exr"));
-    }
-    if (!w.write) w.error = dlerror();
+    w.write = sibling_symbol<Write>("libaosuite_exr.so", "aosuite_write_exr", w.error);
     return w;
   }();
   if (!writer.write) {

@@ -1,13 +1,13 @@
 // aosuite: a thin command line over the library; each subcommand lives in its own file.
-#include <dlfcn.h>
 #include <fmt/format.h>
 
 #include <array>
 #include <cstring>
 #include <exception>
-#include <filesystem>
+#include <string>
 
 #include "cli/commands.hpp"
+#include "cli/sibling_library.hpp"
 #include "renderer/huge_page_malloc.hpp"
 
 namespace {
@@ -41,17 +41,11 @@ bool is_gl_command(const char* name) {
 
 int run_gl_command(int argc, char** argv) {
   aosuite::reexec_with_huge_page_malloc(argv);  // see there: ~20 % off a render process
-  const std::filesystem::path lib =
-      std::filesystem::read_symlink("/proc/self/exe").parent_path() / "libaosuite_gl.so";
-  void* handle = dlopen(lib.c_str(), RTLD_NOW | RTLD_LOCAL);
-  if (!handle) {
-    fmt::print(stderr, "aosuite: cannot load {}: {}\n", lib.string(), dlerror());
-    return aosuite::cli::kExitError;
-  }
-  using Main = int (*)(int, char**);
-  auto entry = reinterpret_cast<Main>(dlsym(handle, "aosuite_gl_main"));
+  std::string error;
+  auto* entry =
+      aosuite::cli::sibling_symbol<int(int, char**)>("libaosuite_gl.so", "aosuite_gl_main", error);
   if (!entry) {
-    fmt::print(stderr, "aosuite: {} has no aosuite_gl_main\n", lib.string());
+    fmt::print(stderr, "aosuite: cannot load the OpenGL commands: {}\n", error);
     return aosuite::cli::kExitError;
   }
   return entry(argc, argv);
