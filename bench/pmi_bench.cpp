@@ -16,10 +16,7 @@ namespace {
 
 namespace rd = aosuite::renderer;
 
-rd::Renderer& renderer() {  // the GL context
-  static rd::Renderer r;
-  return r;
-}
+using aosuite::bench::bench_renderer;
 
 // The dragon when scripts/fetch_dragon.sh has run, else the built-in spheres.
 const rd::PmiObject& object() {
@@ -29,7 +26,7 @@ const rd::PmiObject& object() {
 }
 
 void BM_ItemBufferCount(benchmark::State& state) {
-  renderer();
+  bench_renderer();
   const int w = static_cast<int>(state.range(0));
   rd::ItemBuffer items(object(), w, w * 3 / 4);
   const std::vector<glm::vec3> dirs = rd::make_icosphere(42).vertices;
@@ -43,7 +40,7 @@ void BM_ItemBufferCount(benchmark::State& state) {
 }
 
 void BM_Accumulate(benchmark::State& state) {
-  renderer();
+  bench_renderer();
   const int w = static_cast<int>(state.range(0));
   rd::ItemBuffer items(object(), w, w * 3 / 4);
   const std::vector<std::uint32_t> counts =
@@ -54,7 +51,7 @@ void BM_Accumulate(benchmark::State& state) {
 }
 
 void BM_Channel(benchmark::State& state) {
-  renderer();
+  bench_renderer();
   rd::PmiSettings s;
   s.width = static_cast<int>(state.range(0)), s.height = s.width * 3 / 4;
   s.viewpoints = static_cast<int>(state.range(1));

@@ -10,6 +10,7 @@
 namespace {
 
 namespace rd = aosuite::renderer;
+using aosuite::bench::bench_renderer;
 namespace ref = aosuite::reference;
 
 const rd::Scene& village() {
@@ -19,13 +20,12 @@ const rd::Scene& village() {
 
 void BM_Reference(benchmark::State& state, ref::Variant variant) {
   const auto w = static_cast<int>(state.range(0)), h = w * 9 / 16;
-  static rd::Renderer renderer;
   rd::RenderSettings s;
   s.width = w, s.height = h;
   s.outputs = rd::parse_outputs("ao_float");
   s.outputs.normal = true;
   const rd::View& view = village().views[0];
-  const rd::Images img = renderer.render(village(), view, s);
+  const rd::Images img = bench_renderer().render(village(), view, s);
   const ref::EmbreeScene scene(village());
   const ref::ReferenceSettings settings{256, 1, variant};
   const double rays = settings.rays * cv::countNonZero(img.depth > 0);

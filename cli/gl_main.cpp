@@ -5,6 +5,27 @@
 #include <cstdio>
 
 #include "cli/commands.hpp"
+#include "renderer/gl/gl_context.hpp"
+
+namespace {
+
+// Every GL command takes the same two flags; they override AOSUITE_GL and AOSUITE_GL_DEVICE.
+void add_gl_options(CLI::App& app) {
+  namespace rd = aosuite::renderer;
+  for (CLI::App* cmd : app.get_subcommands({})) {
+    cmd->add_option_function<std::string>(
+           "--gl", [](const std::string& name) { rd::set_gl_backend(rd::parse_gl_backend(name)); },
+           "OpenGL backend: auto (EGL, else OSMesa), egl, osmesa; default $AOSUITE_GL or auto")
+        ->check(CLI::IsMember({"auto", "egl", "osmesa"}));
+    cmd->add_option_function<int>(
+           "--gl-device", [](int index) { rd::set_gl_device(index); },
+           "EGL device index (aosuite gl-info lists them); default $AOSUITE_GL_DEVICE or the "
+           "first GPU, else Mesa's software device")
+        ->check(CLI::Range(0, 1024));
+  }
+}
+
+}  // namespace
 
 extern "C" int aosuite_gl_main(int argc, char** argv) {
   CLI::App app{"aosuite: rendering commands"};
@@ -19,6 +40,8 @@ extern "C" int aosuite_gl_main(int argc, char** argv) {
   aosuite::cli::add_pmi_study_command(app, rc);
   aosuite::cli::add_error_command(app, rc);
   aosuite::cli::add_sweep_command(app, rc);
+  aosuite::cli::add_gl_info_command(app, rc);
+  add_gl_options(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

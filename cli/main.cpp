@@ -30,6 +30,7 @@ constexpr std::array kGlCommands{
     GlCommand{"error", "Measure a technique's AO against a ray-traced reference"},
     GlCommand{"sweep",
               "Time and error of each technique over a samples x radius x resolution grid"},
+    GlCommand{"gl-info", "List the OpenGL backends and devices this machine can render with"},
 };
 
 bool is_gl_command(const char* name) {

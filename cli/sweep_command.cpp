@@ -34,7 +34,7 @@ struct Row {
   rd::Technique technique{};
   int width = 0, height = 0, samples = 0;
   float radius = 0, intensity = 0;
-  double gl_ms = 0, wall_ms = 0;
+  double gl_ms = 0;  // the AO passes' GPU time (median of the runs)
   ref::ErrorReport error;
   ref::ErrorStats unbounded;
   std::map<std::string, std::string> params;  // the grid's fixed parameters
@@ -55,7 +55,7 @@ std::string label(const Row& r) {
 
 struct Timed {
   rd::Images images;
-  double gl_ms, wall_ms;
+  double gl_ms;
 };
 
 // One warm-up frame (llvmpipe compiles shader variants on first use), then the median over
@@ -63,18 +63,17 @@ struct Timed {
 Timed render_timed(rd::Renderer& renderer, const rd::Scene& scene, const rd::View& view,
                    const rd::RenderSettings& s, int runs) {
   renderer.render(scene, view, s);
-  std::vector<double> gl, wall;
-  Timed t{{}, 0, 0};
+  std::vector<double> gl;
+  Timed t{{}, 0};
   for (int r = 0; r < runs; ++r) {
     t.images = renderer.render(scene, view, s);
-    double g = 0, w = 0;
+    double g = 0;
     for (const rd::PassTime& p : t.images.times) {
-      if (p.pass == "gbuffer" || p.pass == "blend") continue;
-      g += p.gpu_ms, w += p.wall_ms;
+      if (p.pass != "gbuffer" && p.pass != "blend") g += p.gpu_ms;
     }
-    gl.push_back(g), wall.push_back(w);
+    gl.push_back(g);
   }
-  t.gl_ms = median(gl), t.wall_ms = median(wall);
+  t.gl_ms = median(gl);
   return t;
 }
 
@@ -119,17 +118,23 @@ void sweep_view(rd::Renderer& renderer, const SweepGrid& g, const rd::Scene& sce
           s.params.samples = samples, s.params.radius = radius, s.params.intensity = intensity;
           s.outputs = rd::parse_outputs("ao_float");
           const Timed t = render_timed(renderer, scene, view, s, g.runs);
-          Row row{scene.name, view.name,
-                  view_index, tg.technique,
-                  w,          h,
-                  samples,    radius,
-                  intensity,  t.gl_ms,
-                  t.wall_ms,  ref::measure_error(t.images.ao, reference, t.images.depth, metric),
-                  {},         tg.params};
+          Row row{scene.name,
+                  view.name,
+                  view_index,
+                  tg.technique,
+                  w,
+                  h,
+                  samples,
+                  radius,
+                  intensity,
+                  t.gl_ms,
+                  ref::measure_error(t.images.ao, reference, t.images.depth, metric),
+                  {},
+                  tg.params};
           if (g.unbounded)
             row.unbounded = ref::measure_error(t.images.ao, unbounded, t.images.depth, metric).all;
           fmt::print("{} {} {}x{} {} s={} r={:g} k={:g}: {:.1f} ms, RMSE {:.4f}{}\n", row.scene,
-                     row.view, w, h, label(row), samples, radius, intensity, row.wall_ms,
+                     row.view, w, h, label(row), samples, radius, intensity, row.gl_ms,
                      row.error.all.rmse,
                      g.unbounded ? fmt::format(" (unbounded {:.4f})", row.unbounded.rmse) : "");
           std::fflush(stdout);
@@ -142,17 +147,17 @@ void sweep_view(rd::Renderer& renderer, const SweepGrid& g, const rd::Scene& sce
 
 std::string csv(const std::vector<Row>& rows, bool unbounded) {
   std::string out =
-      "scene,view,technique,width,height,samples,radius,intensity,ao_gl_ms,ao_wall_ms,pixels,rmse,"
+      "scene,view,technique,width,height,samples,radius,intensity,ao_gl_ms,pixels,rmse,"
       "mae,bias,psnr,ssim,noise_floor,edge_rmse,interior_rmse,rmse_unbounded,bias_unbounded,"
       "ssim_unbounded,params\n";
   for (const Row& r : rows) {
     const ref::ErrorStats& a = r.error.all;
     out += fmt::format(
-        "{},{},{},{},{},{},{:g},{:g},{:.3f},{:.3f},{},{:.6f},{:.6f},{:.6f},{:.4f},{:.6f},{:.6f},{:."
+        "{},{},{},{},{},{},{:g},{:g},{:.3f},{},{:.6f},{:.6f},{:.6f},{:.4f},{:.6f},{:.6f},{:."
         "6f},{:.6f}",
         r.scene, r.view, rd::technique_name(r.technique), r.width, r.height, r.samples, r.radius,
-        r.intensity, r.gl_ms, r.wall_ms, a.pixels, a.rmse, a.mae, a.bias, a.psnr, a.ssim,
-        a.noise_floor, r.error.edge.rmse, r.error.interior.rmse);
+        r.intensity, r.gl_ms, a.pixels, a.rmse, a.mae, a.bias, a.psnr, a.ssim, a.noise_floor,
+        r.error.edge.rmse, r.error.interior.rmse);
     out += unbounded ? fmt::format(",{:.6f},{:.6f},{:.6f}", r.unbounded.rmse, r.unbounded.bias,
                                    r.unbounded.ssim)
                      : ",,,";
@@ -175,7 +180,7 @@ std::string markdown(const std::vector<Row>& rows, const nlohmann::ordered_json&
     md += fmt::format(
         "| {} | {} | {} | {}×{} | {} | {:g} | {:g} | {:.1f} | {:.4f} | {:.4f} | {:+.4f} | "
         "{:.3f} | {:.4f} | {:.4f} | {} |\n",
-        r.scene, r.view, label(r), r.width, r.height, r.samples, r.radius, r.intensity, r.wall_ms,
+        r.scene, r.view, label(r), r.width, r.height, r.samples, r.radius, r.intensity, r.gl_ms,
         a.rmse, a.noise_floor, a.bias, a.ssim, r.error.edge.rmse, r.error.interior.rmse,
         unbounded ? fmt::format("{:.4f}", r.unbounded.rmse) : "–");
   }
@@ -205,7 +210,6 @@ nlohmann::ordered_json row_json(const Row& r, bool unbounded) {
                            {"intensity", r.intensity},
                            {"params", r.params},
                            {"ao_gl_ms", r.gl_ms},
-                           {"ao_wall_ms", r.wall_ms},
                            {"error", to_json(r.error)}};
   if (unbounded) j["error_unbounded"] = to_json(r.unbounded);
   return j;
@@ -256,7 +260,7 @@ void write_plots(const std::vector<Row>& rows, const fs::path& dir, const std::s
   std::map<std::pair<int, int>, std::map<Config, std::tuple<double, double, int>>> sums;
   for (const Row& r : rows) {
     auto& [t, e, n] = sums[{r.width, r.height}][{r.technique, r.samples, r.radius, r.intensity}];
-    t += r.wall_ms, e += unbounded ? r.unbounded.rmse : r.error.all.rmse, ++n;
+    t += r.gl_ms, e += unbounded ? r.unbounded.rmse : r.error.all.rmse, ++n;
   }
   for (const auto& [res, configs] : sums) {
     std::vector<PlotPoint> points;
@@ -319,6 +323,7 @@ int run_sweep(const std::string& grid_file, const std::vector<std::string>& reso
   write_text(dir / "sweep.csv", csv(rows, g.unbounded));
   nlohmann::ordered_json j;
   j["grid"] = g.name, j["rays"] = g.rays, j["runs"] = g.runs, j["gl"] = renderer.gl_description();
+  j["gl_device"] = renderer.gl_source();
   j["rows"] = nlohmann::ordered_json::array();
   for (const Row& r : rows) j["rows"].push_back(row_json(r, g.unbounded));
   j["fit_on_one_view"] = fit_on_one_view(rows);

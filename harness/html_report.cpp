@@ -189,7 +189,7 @@ std::string case_section(const CaseResult& c, Pictures& pics) {
   h += kv_table(about);
   std::map<std::string, std::string> times;
   for (const renderer::PassTime& t : c.times) {
-    times[t.pass] = fmt::format("GPU {:.3f} ms, wall {:.3f} ms", t.gpu_ms, t.wall_ms);
+    times[t.pass] = fmt::format("GPU {:.3f} ms", t.gpu_ms);
   }
   h += kv_table(times) + "</details></section>\n";
   return h;

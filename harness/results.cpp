@@ -42,7 +42,7 @@ json to_json(const CaseResult& c) {
   json images = json::array(), times = json::array(), ignore = json::array();
   for (const ImageVerdict& v : c.images) images.push_back(to_json(v));
   for (const renderer::PassTime& t : c.times) {
-    times.push_back({{"pass", t.pass}, {"gpu_ms", t.gpu_ms}, {"wall_ms", t.wall_ms}});
+    times.push_back({{"pass", t.pass}, {"gpu_ms", t.gpu_ms}});
   }
   for (const resemble::Box& b : c.tolerance.ignore)
     ignore.push_back({b.left, b.top, b.right, b.bottom});
@@ -90,7 +90,7 @@ CaseResult case_from_json(const json& j) {
   for (const json& v : j.at("images")) c.images.push_back(verdict_from_json(v));
   c.files = j.at("files").get<std::map<std::string, std::string>>();
   for (const json& t2 : j.at("times"))
-    c.times.push_back({t2.at("pass"), t2.at("gpu_ms"), t2.at("wall_ms")});
+    c.times.push_back({t2.at("pass"), t2.at("gpu_ms")});
   c.ao_effect_less = j.at("ao_effect_less"), c.ao_effect_nothing = j.at("ao_effect_nothing");
   c.input_hash = j.at("input_hash"), c.judge_hash = j.at("judge_hash");
   c.reused = j.at("reused"), c.seconds = j.at("seconds");

@@ -260,7 +260,10 @@ RunResults start(const Suite& suite, const RunOptions& o, std::unique_ptr<rd::Re
   first = std::make_unique<rd::Renderer>();
   RunResults run;
   run.suite = suite.name, run.suite_file = suite.file.string();
-  run.gl = first->gl_description(), run.platform = platform_key(run.gl);
+  // The backend and device after the driver's own three fields: the report names them, and
+  // platform_key reads the renderer field alone, so goldens match on EGL and OSMesa alike.
+  run.gl = first->gl_description() + " | " + first->gl_source();
+  run.platform = platform_key(run.gl);
   if (o.selection.shard_count > 1) {
     run.shard = fmt::format("{}/{}", o.selection.shard_index, o.selection.shard_count);
   }

@@ -16,14 +16,17 @@ class GBufferAoPass final : public AoPass {
  public:
   explicit GBufferAoPass(const char* fragment)
       : program_(make_program({"fullscreen.vert", fragment})) {}
-  std::vector<PassTime> run(const GBuffer& g, const Camera& camera, const AoParams& params,
-                            GLuint out_fb) override {
+  std::vector<PassTimer> run(const GBuffer& g, const Camera& camera, const AoParams& params,
+                             GLuint out_fb) override {
     PassTimer timer("ao");
     const GLuint p = program_.get();
     set_ao_uniforms(p, params, camera);
     bind_textures(p, {{"u_depth", g.depth.get()}, {"u_normal", g.normal.get()}});
     draw_geometry_pixels(out_fb, g.width, g.height);
-    return {timer.finish()};
+    timer.stop();
+    std::vector<PassTimer> times;
+    times.push_back(std::move(timer));
+    return times;
   }
 
  private:

@@ -13,9 +13,9 @@ namespace aosuite::renderer {
 class AoPass {
  public:
   virtual ~AoPass() = default;
-  // Returns the time of each sub-pass (e.g. SAO's pyramid, MSSAO's levels).
-  virtual std::vector<PassTime> run(const GBuffer& g, const Camera& camera, const AoParams& params,
-                                    GLuint out_fb) = 0;
+  // Returns the timer of each sub-pass (e.g. SAO's pyramid, MSSAO's levels).
+  virtual std::vector<PassTimer> run(const GBuffer& g, const Camera& camera, const AoParams& params,
+                                     GLuint out_fb) = 0;
 };
 
 std::unique_ptr<AoPass> make_ao_pass(Technique technique);

@@ -4,7 +4,7 @@ namespace aosuite::renderer {
 
 BlendPass::BlendPass() : program_(make_program({"fullscreen.vert", "blend.frag"})) {}
 
-PassTime BlendPass::run(const GBuffer& g, GLuint ao, GLuint out_fb) const {
+PassTimer BlendPass::run(const GBuffer& g, GLuint ao, GLuint out_fb) const {
   PassTimer timer("blend");
   const GLuint p = program_.get();
   glProgramUniform1i(p, glGetUniformLocation(p, "u_has_ao"), ao != 0);
@@ -13,7 +13,8 @@ PassTime BlendPass::run(const GBuffer& g, GLuint ao, GLuint out_fb) const {
                     {"u_albedo", g.albedo.get()},
                     {"u_ao", ao ? ao : g.depth.get()}});
   draw_fullscreen(out_fb, g.width, g.height);
-  return timer.finish();
+  timer.stop();
+  return timer;
 }
 
 }  // namespace aosuite::renderer

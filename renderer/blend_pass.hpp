@@ -9,7 +9,7 @@ class BlendPass {
  public:
   BlendPass();
   // ao == 0 renders without AO (the with-AO image then equals the no-AO one).
-  PassTime run(const GBuffer& g, GLuint ao, GLuint out_fb) const;
+  PassTimer run(const GBuffer& g, GLuint ao, GLuint out_fb) const;
 
  private:
   Program program_;

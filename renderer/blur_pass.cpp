@@ -10,8 +10,8 @@ BlurPass::BlurPass()
     : first_axis_(make_program({"fullscreen.vert", "blur.frag"})),
       second_axis_(make_program({"fullscreen.vert", "blur.frag"}, "#define PACKED_INPUT\n")) {}
 
-PassTime BlurPass::run(const GBuffer& g, Blur blur, GLuint ao, GLuint ao_fb, GLuint scratch,
-                       GLuint scratch_fb) const {
+PassTimer BlurPass::run(const GBuffer& g, Blur blur, GLuint ao, GLuint ao_fb, GLuint scratch,
+                        GLuint scratch_fb) const {
   PassTimer timer("blur");
   for (const Program* program : {&first_axis_, &second_axis_}) {
     const GLuint p = program->get();
@@ -26,7 +26,8 @@ PassTime BlurPass::run(const GBuffer& g, Blur blur, GLuint ao, GLuint ao_fb, GLu
     }
     draw_geometry_pixels(first ? scratch_fb : ao_fb, g.width, g.height);
   }
-  return timer.finish();
+  timer.stop();
+  return timer;
 }
 
 }  // namespace aosuite::renderer

@@ -11,8 +11,8 @@ class BlurPass {
   BlurPass();
   // Blurs `ao` (R32F or wider) in place, using `scratch` (same size, RG32F) between the two
   // axes.
-  PassTime run(const GBuffer& g, Blur blur, GLuint ao, GLuint ao_fb, GLuint scratch,
-               GLuint scratch_fb) const;
+  PassTimer run(const GBuffer& g, Blur blur, GLuint ao, GLuint ao_fb, GLuint scratch,
+                GLuint scratch_fb) const;
 
  private:
   Program first_axis_;   // reads AO and the G-buffer's depth, writes (AO, depth) pairs

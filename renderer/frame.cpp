@@ -1,21 +1,10 @@
 #include "renderer/frame.hpp"
 
-#include <chrono>
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
 namespace aosuite::renderer {
-namespace {
-
-double now_ms() {
-  return std::chrono::duration<double, std::milli>(
-             std::chrono::steady_clock::now().time_since_epoch())
-      .count();
-}
-
-}  // namespace
-
 Camera make_camera(const View& v, int width, int height) {
   Camera c;
   c.width = width, c.height = height;
@@ -101,18 +90,15 @@ PassTimer::PassTimer(std::string name) : name_(std::move(name)) {
   GLuint id = 0;
   glCreateQueries(GL_TIME_ELAPSED, 1, &id);
   query_ = Query(id);
-  glFinish();
-  start_ms_ = now_ms();
   glBeginQuery(GL_TIME_ELAPSED, id);
 }
 
-PassTime PassTimer::finish() {
-  glEndQuery(GL_TIME_ELAPSED);
-  glFinish();
-  const double wall = now_ms() - start_ms_;
+void PassTimer::stop() { glEndQuery(GL_TIME_ELAPSED); }
+
+PassTime PassTimer::read() const {
   GLuint64 ns = 0;
   glGetQueryObjectui64v(query_.get(), GL_QUERY_RESULT, &ns);
-  return {name_, static_cast<double>(ns) * 1e-6, wall};
+  return {name_, static_cast<double>(ns) * 1e-6};
 }
 
 }  // namespace aosuite::renderer

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "renderer/gl_objects.hpp"
+#include "renderer/gl/gl_objects.hpp"
 #include "renderer/scene.hpp"
 
 namespace aosuite::renderer {
@@ -57,20 +57,22 @@ void draw_geometry_pixels(GLuint fb, int width, int height);
 
 struct PassTime {
   std::string pass;
-  double gpu_ms = 0;   // GL_TIME_ELAPSED
-  double wall_ms = 0;  // glFinish to glFinish
+  double gpu_ms = 0;  // GL_TIME_ELAPSED
 };
 
-// Times one pass: construct before issuing its GL work, call finish() after.
+// Times one pass on the GPU without stalling it: construction begins a GL_TIME_ELAPSED query
+// and stop() ends it; read() waits for the result, so call it once the frame's work is done
+// (a glFinish or the read-back has waited already). Waiting after every pass would drain the
+// pipeline between passes, which on a GPU costs more than the short passes themselves.
 class PassTimer {
  public:
   explicit PassTimer(std::string name);
-  PassTime finish();
+  void stop();
+  PassTime read() const;
 
  private:
   std::string name_;
   Query query_;
-  double start_ms_;
 };
 
 }  // namespace aosuite::renderer

@@ -25,14 +25,14 @@ class MssaoPass final : public AoPass {
       : downsample_(make_program({"fullscreen.vert", "mssao_downsample.frag"})),
         level_(make_program({"fullscreen.vert", "mssao_level.frag"})) {}
 
-  std::vector<PassTime> run(const GBuffer& g, const Camera& camera, const AoParams& params,
-                            GLuint out_fb) override {
+  std::vector<PassTimer> run(const GBuffer& g, const Camera& camera, const AoParams& params,
+                             GLuint out_fb) override {
     int top = -1;  // the coarsest level that contributes
     int contributing = 0;
     for (int l = 0; l < kLevels; ++l) {
       if (params.level_weights[static_cast<std::size_t>(l)] > 0) top = l, ++contributing;
     }
-    std::vector<PassTime> times;
+    std::vector<PassTimer> times;
     if (top < 0) {  // every weight 0: no occlusion at all
       const float one = 1;
       glClearNamedFramebufferfv(out_fb, GL_COLOR, 0, &one);
@@ -49,7 +49,8 @@ class MssaoPass final : public AoPass {
       bind_textures(d, {{"u_depth", depth_of(l - 1)}, {"u_normal", normal_of(l - 1)}});
       draw_fullscreen(levels_[l].gbuffer_fb.get(), levels_[l].width, levels_[l].height);
     }
-    times.push_back(down_timer.finish());
+    down_timer.stop();
+    times.push_back(std::move(down_timer));
 
     const GLuint p = level_.get();
     for (int l = top; l >= 0; --l) {
@@ -79,7 +80,8 @@ class MssaoPass final : public AoPass {
       } else {
         draw_fullscreen(levels_[l].result_fb.get(), levels_[l].width, levels_[l].height);
       }
-      times.push_back(timer.finish());
+      timer.stop();
+      times.push_back(std::move(timer));
     }
     return times;
   }

@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "renderer/gl_objects.hpp"
+#include "renderer/gl/gl_objects.hpp"
 #include "renderer/pmi_channel.hpp"
 
 namespace aosuite::renderer {

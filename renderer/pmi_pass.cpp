@@ -7,8 +7,8 @@ namespace aosuite::renderer {
 
 PmiPass::PmiPass() : program_(make_program({"pmi_ao.vert", "pmi_ao.frag"})) {}
 
-PassTime PmiPass::run(const Scene& scene, const PmiMaps& maps, const Camera& camera,
-                      GLuint out_fb) const {
+PassTimer PmiPass::run(const Scene& scene, const PmiMaps& maps, const Camera& camera,
+                       GLuint out_fb) const {
   if (maps.object.mesh_vertex_base.size() != scene.meshes.size() ||
       maps.vertex_visibility.size() != maps.object.positions.size()) {
     throw std::invalid_argument("PMI maps do not belong to scene '" + scene.name + "'");
@@ -55,7 +55,8 @@ PassTime PmiPass::run(const Scene& scene, const PmiMaps& maps, const Camera& cam
   set_view_projection(p, camera);
   mesh.draw();
   check_gl("PMI pass");
-  return timer.finish();
+  timer.stop();
+  return timer;
 }
 
 }  // namespace aosuite::renderer

@@ -11,7 +11,7 @@ class PmiPass {
  public:
   PmiPass();
   // `out_fb` must carry the G-buffer's depth (as the Renderer's AO target does).
-  PassTime run(const Scene& scene, const PmiMaps& maps, const Camera& camera, GLuint out_fb) const;
+  PassTimer run(const Scene& scene, const PmiMaps& maps, const Camera& camera, GLuint out_fb) const;
 
  private:
   Program program_;

@@ -1,5 +1,6 @@
 #include "renderer/renderer.hpp"
 
+#include <chrono>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -8,7 +9,7 @@
 #include "renderer/blend_pass.hpp"
 #include "renderer/blur_pass.hpp"
 #include "renderer/gbuffer_pass.hpp"
-#include "renderer/gl_context.hpp"
+#include "renderer/gl/gl_context.hpp"
 #include "renderer/pmi_cache.hpp"
 #include "renderer/pmi_pass.hpp"
 #include "renderer/viewpoint_sphere.hpp"
@@ -36,7 +37,7 @@ Outputs parse_outputs(const std::string& csv) {
 }
 
 struct Renderer::State {
-  std::unique_ptr<GlContext> context = make_osmesa_context();
+  std::unique_ptr<GlContext> context = make_gl_context(gl_choice());
   GBufferPass gbuffer_pass;
   BlurPass blur_pass;
   BlendPass blend_pass;
@@ -71,6 +72,12 @@ struct Renderer::State {
 };
 
 namespace {
+
+double now_ms() {
+  return std::chrono::duration<double, std::milli>(
+             std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
 
 // GL's rows run bottom to top; images run top to bottom.
 cv::Mat read_texture(GLuint tex, int w, int h, GLenum format, GLenum type, int cv_type) {
@@ -121,6 +128,7 @@ Renderer::Renderer() : state_(std::make_unique<State>()) {}
 Renderer::~Renderer() = default;
 
 std::string Renderer::gl_description() const { return state_->context->description(); }
+std::string Renderer::gl_source() const { return state_->context->source(); }
 
 std::shared_ptr<const PmiMaps> Renderer::pmi_maps(const Scene& scene, const PmiSettings& settings) {
   return state_->pmi_cache.get(scene, settings);
@@ -134,32 +142,38 @@ Images Renderer::render(const Scene& scene, const View& view, const RenderSettin
   const Camera camera = make_camera(view, s.width, s.height);
   const GpuScene gpu_scene(scene);
   Images out;
+  std::vector<PassTimer> timers;
+  glFinish();  // the frame's wall time starts with an idle pipeline
+  const double start_ms = now_ms();
 
   PassTimer gbuffer_timer("gbuffer");
   st.gbuffer_pass.run(gpu_scene, camera, st.gbuffer);
-  out.times.push_back(gbuffer_timer.finish());
+  gbuffer_timer.stop();
+  timers.push_back(std::move(gbuffer_timer));
 
   const bool want_ao = s.outputs.needs_ao();
   if (want_ao) {
     if (s.technique == Technique::kPmi) {  // object space: cached maps drawn over the scene
       const auto cached = pmi_override ? nullptr : pmi_maps(scene, pmi_settings(s.params));
       if (!st.pmi_pass) st.pmi_pass = std::make_unique<PmiPass>();
-      out.times.push_back(
+      timers.push_back(
           st.pmi_pass->run(scene, pmi_override ? *pmi_override : *cached, camera, st.ao_fb.get()));
     } else {
-      for (PassTime& t : st.ao_pass(s.technique).run(st.gbuffer, camera, s.params, st.ao_fb.get()))
-        out.times.push_back(std::move(t));
+      for (PassTimer& t : st.ao_pass(s.technique).run(st.gbuffer, camera, s.params, st.ao_fb.get()))
+        timers.push_back(std::move(t));
     }
     if (s.params.blur != Blur::kNone) {
-      out.times.push_back(st.blur_pass.run(st.gbuffer, s.params.blur, st.ao.get(), st.ao_fb.get(),
-                                           st.scratch.get(), st.scratch_fb.get()));
+      timers.push_back(st.blur_pass.run(st.gbuffer, s.params.blur, st.ao.get(), st.ao_fb.get(),
+                                        st.scratch.get(), st.scratch_fb.get()));
     }
   }
   if (s.outputs.no_ao || s.outputs.with_ao || s.outputs.ao_only) {
-    out.times.push_back(
-        st.blend_pass.run(st.gbuffer, want_ao ? st.ao.get() : 0, st.blend_fb.get()));
+    timers.push_back(st.blend_pass.run(st.gbuffer, want_ao ? st.ao.get() : 0, st.blend_fb.get()));
   }
+  glFinish();
+  out.frame_ms = now_ms() - start_ms;
   check_gl("render");
+  for (const PassTimer& t : timers) out.times.push_back(t.read());
 
   const int w = s.width, h = s.height;
   auto rgba = [&](const Texture& t) {

@@ -33,14 +33,18 @@ struct Images {
   cv::Mat ao;                       // CV_32F visibility in [0, 1]; 1 on background
   cv::Mat depth;                    // CV_32F linear view depth; 0 on background
   cv::Mat normal;                   // CV_32FC3 view-space unit normal (x, y, z); Outputs::normal
-  std::vector<PassTime> times;
+  std::vector<PassTime> times;      // each pass's GPU time
+  double frame_ms = 0;  // wall time from the first pass's submission to the last one's end
 };
 
 class Renderer {
  public:
-  Renderer();  // makes an OSMesa GL 4.5 core context; throws if none
+  // Makes a GL 4.5 core context as gl_choice() says (EGL or OSMesa); throws
+  // std::runtime_error if none can be made.
+  Renderer();
   ~Renderer();
-  std::string gl_description() const;
+  std::string gl_description() const;  // "vendor | renderer | version"
+  std::string gl_source() const;       // the backend and device, e.g. "EGL device 0 (software)"
   // `pmi_override`: for Technique::kPmi, draw these maps' per-vertex values instead of the
   // scene's own PMI (how `aosuite pmi-study` shows ray-traced per-vertex AO the same way).
   Images render(const Scene& scene, const View& view, const RenderSettings& settings,

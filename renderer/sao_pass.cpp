@@ -15,8 +15,8 @@ class SaoPass final : public AoPass {
       : minify_(make_program({"fullscreen.vert", "sao_minify.frag"})),
         ao_(make_program({"fullscreen.vert", "sao.frag"})) {}
 
-  std::vector<PassTime> run(const GBuffer& g, const Camera& camera, const AoParams& params,
-                            GLuint out_fb) override {
+  std::vector<PassTimer> run(const GBuffer& g, const Camera& camera, const AoParams& params,
+                             GLuint out_fb) override {
     if (g.width != width_ || g.height != height_) allocate(g.width, g.height);
     PassTimer pyramid_timer("sao_pyramid");
     glCopyImageSubData(g.depth.get(), GL_TEXTURE_2D, 0, 0, 0, 0, pyramid_.get(), GL_TEXTURE_2D, 0,
@@ -32,7 +32,7 @@ class SaoPass final : public AoPass {
     }
     glTextureParameteri(tex, GL_TEXTURE_BASE_LEVEL, 0);
     glTextureParameteri(tex, GL_TEXTURE_MAX_LEVEL, levels_ - 1);
-    const PassTime pyramid = pyramid_timer.finish();
+    pyramid_timer.stop();
 
     PassTimer ao_timer("ao");
     const GLuint p = ao_.get();
@@ -40,7 +40,11 @@ class SaoPass final : public AoPass {
     glProgramUniform1i(p, glGetUniformLocation(p, "u_max_level"), levels_ - 1);
     bind_textures(p, {{"u_depth", tex}});
     draw_geometry_pixels(out_fb, g.width, g.height);
-    return {pyramid, ao_timer.finish()};
+    ao_timer.stop();
+    std::vector<PassTimer> times;
+    times.push_back(std::move(pyramid_timer));
+    times.push_back(std::move(ao_timer));
+    return times;
   }
 
  private:

@@ -8,20 +8,29 @@ PACKAGES=(
   g++ cmake make pkg-config
   libspng-dev libisal-dev libopencv-core-dev libfmt-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev libbenchmark-dev
-  libosmesa6-dev libglm-dev libopenimageio-dev
+  libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri libglm-dev libopenimageio-dev
   libtomlplusplus-dev libassimp-dev libxxhash-dev libembree-dev
   chromium
 )
 
+# OSMesa is optional (Mesa 25.1 removed it): installed where the distribution still has it, for
+# the --gl osmesa backend and the test that EGL and OSMesa render the same bytes.
+OPTIONAL_PACKAGES=(libosmesa6-dev)
+
 SUDO=""
 if [ "$(id -u)" != 0 ] && command -v sudo >/dev/null; then SUDO=sudo; fi
-missing=()
-for p in "${PACKAGES[@]}"; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-done
+installed() { dpkg-query -W -f='${Status}' "$1" 2>/dev/null | grep -q "install ok installed"; }
+missing=() optional_missing=()
+for p in "${PACKAGES[@]}"; do installed "$p" || missing+=("$p"); done
+for p in "${OPTIONAL_PACKAGES[@]}"; do installed "$p" || optional_missing+=("$p"); done
+if [ "${#missing[@]}" -gt 0 ] || [ "${#optional_missing[@]}" -gt 0 ]; then
+  $SUDO apt-get update -qq >&2
+  for p in "${optional_missing[@]}"; do
+    if apt-cache show "$p" >/dev/null 2>&1; then missing+=("$p"); fi
+  done
+fi
 if [ "${#missing[@]}" -gt 0 ]; then
   echo "[setup] apt-get install ${missing[*]}" >&2
-  $SUDO apt-get update -qq >&2
   DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends \
     "${missing[@]}" >&2
 fi

@@ -1,4 +1,4 @@
-#include "renderer/gl_objects.hpp"
+#include "renderer/gl/gl_objects.hpp"
 
 #include <algorithm>
 #include <stdexcept>

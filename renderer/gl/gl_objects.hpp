@@ -6,7 +6,7 @@
 #include <string>
 #include <utility>
 
-#include "renderer/gl.hpp"
+#include "renderer/gl/gl.hpp"
 
 namespace aosuite::renderer {
 

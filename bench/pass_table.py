@@ -1,0 +1,64 @@
+#!/usr/bin/env python3
+"""Per-pass GPU time of every technique, as a Markdown table for bench/README.md.
+
+    bench/pass_table.py [--bin build/aosuite] [--scene village] [--view street]
+                        [--runs 20] [--sizes 1920x1080,3840x2160] [-- extra render args]
+
+For each size and technique it runs `aosuite render --outputs all --runs N` (one warm-up
+frame, then N timed frames) and prints the median GPU time of each pass (GL_TIME_ELAPSED) and
+the frame's wall time before read-back. The device is whatever `--gl`/`AOSUITE_GL` pick; the
+table's caption names it. On a GPU machine: `AOSUITE_GL=egl bench/pass_table.py`.
+"""
+import argparse
+import json
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+TECHNIQUES = ["alchemy", "sao", "mssao", "ue4", "pmi"]
+
+
+def render(args, technique, width, height, out):
+    cmd = [args.bin, "render", "--scene", args.scene, "--technique", technique,
+           "--width", str(width), "--height", str(height), "--outputs", "all",
+           "--runs", str(args.runs), "--out", out] + args.extra
+    if args.view:
+        cmd += ["--view", args.view]
+    subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL)
+    return json.loads(next(Path(out).glob(f"*_{technique}.json")).read_text())
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
+    p.add_argument("--bin", default="build/aosuite")
+    p.add_argument("--scene", default="village")
+    p.add_argument("--view", default="")
+    p.add_argument("--runs", type=int, default=20)
+    p.add_argument("--sizes", default="1920x1080,3840x2160")
+    p.add_argument("extra", nargs="*", help="more `render` arguments, after --")
+    args = p.parse_args()
+    device = None
+    for size in args.sizes.split(","):
+        width, height = (int(v) for v in size.split("x"))
+        rows = []
+        for technique in TECHNIQUES:
+            with tempfile.TemporaryDirectory() as out:
+                j = render(args, technique, width, height, out)
+            device = f"{j['gl_device']}: {j['gl']}"
+            ms = j["median_ms"]
+            ao = sum(v for k, v in ms.items() if k not in ("gbuffer", "blur", "blend", "frame_wall"))
+            rows.append((technique, ms.get("gbuffer", 0), ao, ms.get("blur", 0),
+                         ms.get("blend", 0), ms["frame_wall"],
+                         ", ".join(f"{k} {v:.3f}" for k, v in ms.items()
+                                   if k not in ("gbuffer", "blur", "blend", "frame_wall", "ao"))))
+        print(f"\n{args.scene} {width}x{height}, median of {args.runs} frames, {device}\n")
+        print("| technique | G-buffer ms | AO ms | blur ms | blend ms | frame wall ms | AO sub-passes |")
+        print("| --- | --- | --- | --- | --- | --- | --- |")
+        for r in rows:
+            print(f"| {r[0]} | {r[1]:.3f} | {r[2]:.3f} | {r[3]:.3f} | {r[4]:.3f} | {r[5]:.3f} | {r[6]} |")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
