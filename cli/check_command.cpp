@@ -187,6 +187,16 @@ int run_merge(const std::string& out, const std::vector<std::string>& shards,
   return finish(merged, out, junit);
 }
 
+// Runs `f`, showing an error's bytes that are not printable UTF-8 escaped (a path may hold any).
+template <typename F>
+int escaped_errors(F f) {
+  try {
+    return f();
+  } catch (const std::exception& e) {
+    throw std::runtime_error(hs::printable(e.what()));
+  }
+}
+
 }  // namespace
 
 void add_check_command(CLI::App& app, int& rc) {
@@ -199,7 +209,7 @@ void add_check_command(CLI::App& app, int& rc) {
   cmd->add_option("--junit", a->junit, "also write JUnit XML here");
   cmd->add_flag("--diff-all", a->diff_all, "write diff images for passing cases too");
   cmd->add_flag("--list", a->list, "print the selected case ids and stop");
-  guarded(cmd, rc, "check", [a] { return run_check(*a); });
+  guarded(cmd, rc, "check", [a] { return escaped_errors([&] { return run_check(*a); }); });
 }
 
 void add_bless_command(CLI::App& app, int& rc) {
@@ -210,7 +220,7 @@ void add_bless_command(CLI::App& app, int& rc) {
   cmd->add_flag("--platform", a->platform,
                 "write goldens for this GL platform only (goldens/<suite>/<case>/<platform>/)");
   cmd->add_option("--variant", a->tag, "add an accepted variant <image>~<tag>.png instead");
-  guarded(cmd, rc, "bless", [a] { return run_bless(*a); });
+  guarded(cmd, rc, "bless", [a] { return escaped_errors([&] { return run_bless(*a); }); });
 }
 
 void add_report_command(CLI::App& app, int& rc) {
@@ -223,8 +233,9 @@ void add_report_command(CLI::App& app, int& rc) {
   merge->add_option("--out", *out, "merged report folder")->required();
   merge->add_option("--junit", *junit, "also write JUnit XML here");
   merge->add_option("shards", *shards, "report folders of the shards")->required();
-  guarded(merge, rc, "report merge",
-          [out, shards, junit] { return run_merge(*out, *shards, *junit); });
+  guarded(merge, rc, "report merge", [out, shards, junit] {
+    return escaped_errors([&] { return run_merge(*out, *shards, *junit); });
+  });
 }
 
 }  // namespace aosuite::cli

@@ -387,6 +387,9 @@ TEST_F(HarnessCli, OddBytesInPathsAreEscapedEverywhere) {
   const std::string html = read_text(dir_ / "reports" / "t" / "index.html");
   EXPECT_NE(html.find("g\\xff\\x01/corner-"), std::string::npos);
   EXPECT_EQ(html.find('\xff'), std::string::npos);
+  const test::Outcome missing = aosuite("check \"$(printf 'x\\377.toml')\"");
+  EXPECT_EQ(missing.rc, 2);
+  EXPECT_NE(missing.err.find("x\\xff.toml"), std::string::npos) << missing.err;
 }
 
 // The report's copy of a golden is written whole or not at all, even when the disk is full
