@@ -2,8 +2,11 @@
 #include <fmt/format.h>
 
 #include <filesystem>
+#include <set>
 
 #include "cli/commands.hpp"
+#include "compare/image_io.hpp"
+#include "harness/escape.hpp"
 #include "harness/html_report.hpp"
 #include "harness/junit.hpp"
 #include "harness/runner.hpp"
@@ -15,14 +18,19 @@ namespace fs = std::filesystem;
 namespace hs = aosuite::harness;
 
 struct HarnessArgs {
-  std::string suite, filter, shard, report, junit, tag;
+  std::string suite, filter, shard, report, junit, tag, goldens;
   int jobs = 1;
   bool diff_all = false, no_reuse = false, platform = false, list = false;
 };
 
 void add_selection_options(CLI::App* cmd, HarnessArgs& a) {
   cmd->add_option("suite", a.suite, "suite file, e.g. suites/default.toml")->required();
-  cmd->add_option("--filter", a.filter, "only cases whose id matches this regular expression");
+  cmd->add_option("--filter", a.filter,
+                  "only cases whose id contains a match of this regular expression (anchor it, "
+                  "'^id$', for exactly one case)");
+  cmd->add_option("--goldens", a.goldens,
+                  "goldens folder (default: the suite's goldens key, else goldens/<suite name> "
+                  "in the current directory)");
   cmd->add_option("--shard", a.shard,
                   "i/n: run every n-th case from the i-th (default: GTEST_SHARD_INDEX / "
                   "GTEST_TOTAL_SHARDS when set)");
@@ -30,6 +38,12 @@ void add_selection_options(CLI::App* cmd, HarnessArgs& a) {
       ->capture_default_str();
   cmd->add_option("--report", a.report, "report folder (default: reports/<suite name>)");
   cmd->add_flag("--no-reuse", a.no_reuse, "re-render and re-judge even unchanged cases");
+}
+
+hs::Suite load(const HarnessArgs& a) {
+  hs::Suite suite = hs::load_suite(a.suite);
+  if (!a.goldens.empty()) suite.goldens = a.goldens, suite.goldens_given = true;
+  return suite;
 }
 
 hs::RunOptions run_options(const hs::Suite& suite, const HarnessArgs& a) {
@@ -51,7 +65,7 @@ void print_progress(const hs::CaseResult& r, int done, int total) {
   }
   if (r.status != hs::Status::kPass && !r.message.empty()) detail += "  " + r.message;
   fmt::print("[{:>{}}/{}] {:<5} {}{}  {:.2f} s{}\n", done, fmt::formatted_size("{}", total), total,
-             hs::status_name(r.status), r.id, detail, r.seconds,
+             hs::status_name(r.status), r.id, hs::printable(detail), r.seconds,
              r.reused ? " (unchanged, reused)" : "");
   std::fflush(stdout);
 }
@@ -70,18 +84,31 @@ int finish(const hs::RunResults& run, const fs::path& report_dir, const std::str
   if (!junit.empty()) hs::write_junit(run, junit);
   const hs::Counts n = hs::count(run);
   fmt::print("{} cases: {} passed, {} failed, {} new, {} errors. Report: {}\n", run.cases.size(),
-             n.pass, n.fail, n.fresh, n.error, (report_dir / "index.html").string());
+             n.pass, n.fail, n.fresh, n.error, hs::printable((report_dir / "index.html").string()));
+  std::vector<std::string> to_accept;
   for (const hs::CaseResult& c : run.cases) {
-    if (!c.bless_command.empty()) fmt::print("  to accept {}: {}\n", c.id, c.bless_command);
+    if (c.bless_command.empty()) continue;
+    fmt::print("  to accept {}: {}\n", c.id, hs::printable(c.bless_command));
+    to_accept.push_back(c.id);
   }
+  if (to_accept.size() > 1 && !run.bless_prefix.empty()) {
+    fmt::print("  to accept all {} failing and new cases: {}\n", to_accept.size(),
+               hs::printable(hs::bless_command(run.bless_prefix, to_accept)));
+  }
+  std::fflush(stdout);
   return hs::exit_code(n);
 }
 
 int run_check(const HarnessArgs& a) {
-  const hs::Suite suite = hs::load_suite(a.suite);
+  const hs::Suite suite = load(a);
   hs::RunOptions o = run_options(suite, a);
   if (a.list) {
-    for (const hs::Case* c : hs::select(suite, o.selection)) fmt::print("{}\n", c->id);
+    const std::vector<const hs::Case*> cases = hs::select(suite, o.selection);
+    if (cases.empty()) {
+      throw std::invalid_argument(hs::printable(a.suite + ": the selection holds none of its " +
+                                                std::to_string(suite.cases.size()) + " cases"));
+    }
+    for (const hs::Case* c : cases) fmt::print("{}\n", c->id);
     return kExitSame;
   }
   o.progress = print_progress;
@@ -91,46 +118,83 @@ int run_check(const HarnessArgs& a) {
 }
 
 int run_bless(const HarnessArgs& a) {
-  const hs::Suite suite = hs::load_suite(a.suite);
+  const hs::Suite suite = load(a);
   hs::BlessOptions b{.run = run_options(suite, a), .platform = a.platform, .tag = a.tag};
+  // One line per case as it finishes, flushed: a redirected log shows what was written even
+  // when bless is killed.
   b.run.progress = [](const hs::CaseResult& r, int done, int total) {
     fmt::print("[{}/{}] {} {}: {}\n", done, total,
-               r.status == hs::Status::kPass ? "BLESSED" : "NOT BLESSED", r.id, r.message);
+               r.status == hs::Status::kPass ? "BLESSED" : "NOT BLESSED", r.id,
+               hs::printable(r.message));
+    std::fflush(stdout);
   };
   const hs::RunResults run = hs::bless(suite, b);
   const hs::Counts n = hs::count(run);
   fmt::print(
-      "{} goldens blessed into {}, {} cases could not be rendered (their goldens are "
-      "untouched)\n",
-      n.pass, suite.goldens.string(), n.error);
+      "{} of {} cases blessed into {}{}\n", n.pass, run.cases.size(),
+      hs::printable(suite.goldens.string()),
+      n.error ? fmt::format("; {} not blessed, their goldens as they were (reasons above)", n.error)
+              : "");
+  std::fflush(stdout);
   return n.error ? kExitError : kExitSame;
 }
 
+// Copies a shard's case folder: its plain files only (no links, nothing outside it), each
+// written under a temporary name and renamed.
+void copy_case(const fs::path& from, const fs::path& to) {
+  fs::create_directories(to);
+  for (const fs::directory_entry& e : fs::directory_iterator(from)) {
+    if (!e.is_symlink() && e.is_regular_file() && hs::valid_name(e.path().filename().string())) {
+      write_file_atomic(to / e.path().filename(), read_file(e.path()));
+    }
+  }
+}
+
+// Shard data is checked as it is read (read_results: ids and files stay inside their folders)
+// and before anything is written: one suite, no case twice.
 int run_merge(const std::string& out, const std::vector<std::string>& shards,
               const std::string& junit) {
-  hs::RunResults merged;
+  std::vector<hs::RunResults> parts;
+  std::set<std::string> seen;
   for (const std::string& dir : shards) {
-    hs::RunResults part = hs::read_results(dir);
-    if (merged.suite.empty()) {
-      merged = part;
-      merged.cases.clear();
-    } else if (part.suite != merged.suite) {
-      throw std::runtime_error(
-          fmt::format("{}: suite '{}' differs from '{}'", dir, part.suite, merged.suite));
+    parts.push_back(hs::read_results(dir));
+    if (parts.back().suite != parts.front().suite) {
+      throw std::runtime_error(hs::printable(fmt::format("{}: suite '{}' differs from '{}'", dir,
+                                                         parts.back().suite, parts.front().suite)));
     }
-    for (hs::CaseResult& c : part.cases) {
-      const fs::path from = fs::path(dir) / "cases" / c.id, to = fs::path(out) / "cases" / c.id;
-      if (!fs::equivalent(fs::path(dir), fs::path(out))) {
-        fs::create_directories(to);
-        fs::copy(from, to, fs::copy_options::overwrite_existing | fs::copy_options::recursive);
+    for (const hs::CaseResult& c : parts.back().cases) {
+      if (!seen.insert(c.id).second) {
+        throw std::runtime_error(
+            hs::printable(fmt::format("{}: case '{}' is in two shards", dir, c.id)));
+      }
+    }
+  }
+  fs::create_directories(out);
+  hs::RunResults merged = parts.front();
+  merged.cases.clear();
+  merged.shard.clear();
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    const fs::path dir = shards[i];
+    for (hs::CaseResult& c : parts[i].cases) {
+      const fs::path from = dir / "cases" / c.id;
+      if (!fs::equivalent(dir, fs::path(out)) && fs::is_directory(fs::symlink_status(from))) {
+        copy_case(from, fs::path(out) / "cases" / c.id);
       }
       merged.cases.push_back(std::move(c));
     }
   }
-  merged.shard.clear();
-  fs::create_directories(out);
   hs::write_results(out, merged);
   return finish(merged, out, junit);
+}
+
+// Runs `f`, showing an error's bytes that are not printable UTF-8 escaped (a path may hold any).
+template <typename F>
+int escaped_errors(F f) {
+  try {
+    return f();
+  } catch (const std::exception& e) {
+    throw std::runtime_error(hs::printable(e.what()));
+  }
 }
 
 }  // namespace
@@ -145,7 +209,7 @@ void add_check_command(CLI::App& app, int& rc) {
   cmd->add_option("--junit", a->junit, "also write JUnit XML here");
   cmd->add_flag("--diff-all", a->diff_all, "write diff images for passing cases too");
   cmd->add_flag("--list", a->list, "print the selected case ids and stop");
-  guarded(cmd, rc, "check", [a] { return run_check(*a); });
+  guarded(cmd, rc, "check", [a] { return escaped_errors([&] { return run_check(*a); }); });
 }
 
 void add_bless_command(CLI::App& app, int& rc) {
@@ -156,7 +220,7 @@ void add_bless_command(CLI::App& app, int& rc) {
   cmd->add_flag("--platform", a->platform,
                 "write goldens for this GL platform only (goldens/<suite>/<case>/<platform>/)");
   cmd->add_option("--variant", a->tag, "add an accepted variant <image>~<tag>.png instead");
-  guarded(cmd, rc, "bless", [a] { return run_bless(*a); });
+  guarded(cmd, rc, "bless", [a] { return escaped_errors([&] { return run_bless(*a); }); });
 }
 
 void add_report_command(CLI::App& app, int& rc) {
@@ -169,8 +233,9 @@ void add_report_command(CLI::App& app, int& rc) {
   merge->add_option("--out", *out, "merged report folder")->required();
   merge->add_option("--junit", *junit, "also write JUnit XML here");
   merge->add_option("shards", *shards, "report folders of the shards")->required();
-  guarded(merge, rc, "report merge",
-          [out, shards, junit] { return run_merge(*out, *shards, *junit); });
+  guarded(merge, rc, "report merge", [out, shards, junit] {
+    return escaped_errors([&] { return run_merge(*out, *shards, *junit); });
+  });
 }
 
 }  // namespace aosuite::cli

@@ -1,11 +1,16 @@
 #include "harness/goldens.hpp"
 
 #include <fmt/format.h>
+#include <signal.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cctype>
-
-#include "compare/image_io.hpp"
+#include <cerrno>
+#include <chrono>
+#include <cstring>
+#include <stdexcept>
 
 namespace aosuite::harness {
 
@@ -31,16 +36,26 @@ std::string platform_key(std::string_view description) {
 
 namespace {
 
-// <image>.png first, then its variants <image>~<tag>.png in name order.
-std::vector<fs::path> goldens_in(const fs::path& dir, std::string_view image) {
+// <image>.png first, then its variants <image>~<tag>.png in name order. A missing folder holds
+// none; one that exists and cannot be listed is an error, not "no golden yet".
+std::vector<fs::path> goldens_in(const fs::path& dir, std::string_view image,
+                                 bool variants_only = false) {
   std::vector<fs::path> out;
   std::error_code ec;
-  for (const fs::directory_entry& e : fs::directory_iterator(dir, ec)) {
-    const std::string name = e.path().filename().string();
-    const bool primary = name == std::string(image) + ".png";
+  fs::directory_iterator it(dir, ec);
+  if (ec == std::errc::no_such_file_or_directory) return out;
+  const auto fail = [&] {
+    throw std::runtime_error(
+        fmt::format("{}: cannot read the golden folder: {}", dir.string(), ec.message()));
+  };
+  if (ec) fail();
+  for (; it != fs::directory_iterator(); it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    const bool primary = !variants_only && name == std::string(image) + ".png";
     const bool variant = name.starts_with(std::string(image) + "~") && name.ends_with(".png");
-    if (primary || variant) out.push_back(e.path());
+    if (primary || variant) out.push_back(it->path());
   }
+  if (ec) fail();
   std::sort(out.begin(), out.end(), [](const fs::path& a, const fs::path& b) {
     const bool av = a.filename().string().find('~') != std::string::npos;
     const bool bv = b.filename().string().find('~') != std::string::npos;
@@ -49,12 +64,75 @@ std::vector<fs::path> goldens_in(const fs::path& dir, std::string_view image) {
   return out;
 }
 
+[[noreturn]] void fail_errno(const fs::path& path, std::string_view what) {
+  throw std::runtime_error(fmt::format("{}: {}: {}", path.string(), what, std::strerror(errno)));
+}
+
+// Writes `bytes` to a new temporary beside `path` and syncs it; returns the temporary's name.
+fs::path write_temporary(const fs::path& path, std::span<const unsigned char> bytes) {
+  std::string tmp =
+      (path.parent_path() /
+       fmt::format(".{}.bless-{}-XXXXXX", path.filename().string(), static_cast<long>(::getpid())))
+          .string();
+  const int fd = ::mkstemp(tmp.data());
+  if (fd < 0) fail_errno(path, "cannot create a temporary file beside it");
+  const auto abandon = [&](std::string_view what) {
+    const int saved = errno;
+    ::close(fd);
+    ::unlink(tmp.c_str());
+    errno = saved;
+    fail_errno(path, what);
+  };
+  for (std::size_t done = 0; done < bytes.size();) {
+    const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) abandon("cannot write");
+    done += static_cast<std::size_t>(n);
+  }
+  const mode_t mask = ::umask(0);  // mkstemp creates 0600; give what a plain create would
+  ::umask(mask);
+  if (::fchmod(fd, 0666 & ~mask) != 0 || ::fsync(fd) != 0) abandon("cannot finish writing");
+  if (::close(fd) != 0) {
+    const int saved = errno;
+    ::unlink(tmp.c_str());
+    errno = saved;
+    fail_errno(path, "cannot close");
+  }
+  return tmp;
+}
+
+// ".with_ao.png.bless-1234-AbC123" -> 1234; 0 when the name is not one of ours.
+long temporary_owner(const std::string& name) {
+  const std::size_t at = name.rfind(".bless-");
+  if (!name.starts_with(".") || at == std::string::npos) return 0;
+  const std::size_t dash = name.find('-', at + 7);
+  if (dash == std::string::npos || name.size() - dash - 1 != 6) return 0;
+  long pid = 0;
+  for (std::size_t i = at + 7; i < dash; ++i) {
+    if (!std::isdigit(static_cast<unsigned char>(name[i]))) return 0;
+    pid = pid * 10 + (name[i] - '0');
+    if (pid > (1L << 30)) return 0;
+  }
+  return pid;
+}
+
+bool legacy_temporary(const std::string& name) {
+  const std::size_t at = name.rfind(".tmp-");
+  return name.starts_with(".") && at != std::string::npos && name.size() - at == 11;
+}
+
 }  // namespace
 
 std::vector<fs::path> accepted_goldens(const fs::path& case_dir, std::string_view image,
                                        std::string_view platform) {
+  std::vector<fs::path> generic = goldens_in(case_dir, image);
+  if (platform.empty()) return generic;
   std::vector<fs::path> out = goldens_in(case_dir / platform, image);
-  return out.empty() ? goldens_in(case_dir, image) : out;
+  if (out.empty()) return generic;
+  for (const fs::path& g : generic) {
+    if (g.filename().string().find('~') != std::string::npos) out.push_back(g);
+  }
+  return out;
 }
 
 fs::path golden_path(const fs::path& case_dir, std::string_view image, std::string_view platform,
@@ -63,9 +141,61 @@ fs::path golden_path(const fs::path& case_dir, std::string_view image, std::stri
   return platform.empty() ? case_dir / name : case_dir / platform / name;
 }
 
-void write_golden(const fs::path& path, std::span<const unsigned char> png) {
-  fs::create_directories(path.parent_path());
-  write_file_atomic(path, png);
+void replace_goldens(const std::vector<GoldenWrite>& files) {
+  for (const auto& [path, bytes] : files) {
+    std::error_code ec;
+    const fs::file_status st = fs::symlink_status(path, ec);
+    if (!ec && fs::exists(st) && !fs::is_regular_file(st)) {
+      throw std::runtime_error(path.string() + ": is not a file; nothing was replaced");
+    }
+    fs::create_directories(path.parent_path(), ec);
+    if (ec) {
+      throw std::runtime_error(fmt::format("{}: cannot create the folder: {}",
+                                           path.parent_path().string(), ec.message()));
+    }
+  }
+  std::vector<fs::path> temporaries;
+  try {
+    for (const auto& [path, bytes] : files) temporaries.push_back(write_temporary(path, bytes));
+  } catch (const std::exception& e) {
+    for (const fs::path& t : temporaries) ::unlink(t.c_str());
+    throw std::runtime_error(std::string(e.what()) + "; nothing was replaced");
+  }
+  for (std::size_t i = 0; i < files.size(); ++i) {
+    if (::rename(temporaries[i].c_str(), files[i].first.c_str()) != 0) {
+      const int saved = errno;
+      for (std::size_t k = i; k < files.size(); ++k) ::unlink(temporaries[k].c_str());
+      errno = saved;
+      fail_errno(files[i].first, fmt::format("cannot rename into place ({} of {} files of this "
+                                             "case were already replaced)",
+                                             i, files.size()));
+    }
+  }
+}
+
+int remove_stale_temporaries(const fs::path& case_dir) {
+  int removed = 0;
+  std::vector<fs::path> dirs{case_dir};
+  std::error_code ec;
+  for (const fs::directory_entry& e : fs::directory_iterator(case_dir, ec)) {
+    if (e.is_directory(ec) && !e.is_symlink(ec)) dirs.push_back(e.path());
+  }
+  const auto now = fs::file_time_type::clock::now();
+  for (const fs::path& dir : dirs) {
+    for (const fs::directory_entry& e : fs::directory_iterator(dir, ec)) {
+      const std::string name = e.path().filename().string();
+      bool stale = false;
+      if (const long pid = temporary_owner(name); pid > 0) {
+        stale = ::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH;
+      } else if (legacy_temporary(name)) {
+        std::error_code tec;
+        const auto when = fs::last_write_time(e.path(), tec);
+        stale = !tec && now - when > std::chrono::minutes(1);
+      }
+      if (stale && e.is_regular_file(ec) && fs::remove(e.path(), ec)) ++removed;
+    }
+  }
+  return removed;
 }
 
 }  // namespace aosuite::harness

@@ -1,14 +1,16 @@
 // Where goldens live and how they are replaced. A case's folder is <goldens>/<case id>/; in it
 // <image>.png is the accepted golden and <image>~<tag>.png are further accepted variants. A
 // sub-folder named by a platform key (the GL renderer, e.g. llvmpipe-llvm-15-0-6-256-bits)
-// holds goldens for that platform only, and when it has any for an image they replace the
-// generic ones there: drivers that rasterise differently get their own goldens.
+// holds goldens for that platform only: when it has any for an image, its ones replace the
+// generic <image>.png there (drivers that rasterise differently get their own goldens) and the
+// generic variants <image>~<tag>.png stay accepted after them.
 #pragma once
 
 #include <filesystem>
 #include <span>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace aosuite::harness {
@@ -19,6 +21,8 @@ namespace aosuite::harness {
 std::string platform_key(std::string_view gl_description);
 
 // The goldens accepted for `image` of a case, platform-specific ones first; empty if none.
+// Throws std::runtime_error naming the folder when the case's folder (or its platform folder)
+// exists but cannot be listed: not a folder, no permission.
 std::vector<std::filesystem::path> accepted_goldens(const std::filesystem::path& case_dir,
                                                     std::string_view image,
                                                     std::string_view platform);
@@ -28,8 +32,16 @@ std::vector<std::filesystem::path> accepted_goldens(const std::filesystem::path&
 std::filesystem::path golden_path(const std::filesystem::path& case_dir, std::string_view image,
                                   std::string_view platform, std::string_view tag);
 
-// Replaces (or creates) one golden: written beside it under a temporary name, then renamed,
-// so a reader or a killed bless sees the old file or the new one, never a mix.
-void write_golden(const std::filesystem::path& path, std::span<const unsigned char> png);
+// Replaces (or creates) a case's goldens all or nothing: every file is first written and
+// synced beside its target under a temporary dot-name (.<name>.bless-<pid>-XXXXXX), and only
+// when all are written are they renamed into place. On failure before the renames every
+// temporary is removed, no golden has changed, and std::runtime_error names the file and the
+// reason. A reader or a killed bless sees each golden old or new, never a mix within a file.
+using GoldenWrite = std::pair<std::filesystem::path, std::span<const unsigned char>>;
+void replace_goldens(const std::vector<GoldenWrite>& files);
+
+// Removes temporaries a killed bless left in `case_dir` and its platform folders: ours whose
+// process is gone, and the older form .<name>.tmp-XXXXXX once a minute old. Returns how many.
+int remove_stale_temporaries(const std::filesystem::path& case_dir);
 
 }  // namespace aosuite::harness

@@ -41,8 +41,14 @@ class Pictures {
   explicit Pictures(fs::path cases_dir) : dir_(std::move(cases_dir)) {}
   // An <img> showing `rel` (relative to cases/), or a note when the file is missing.
   std::string img(const std::string& rel, std::string_view cls, std::string_view alt) {
+    // Only a plain file inside cases/: a report never embeds anything else on the machine.
     const fs::path file = dir_ / rel;
-    if (rel.empty() || !fs::is_regular_file(file)) return "<p><em>(no image)</em></p>";
+    std::error_code ec;
+    const fs::path r = fs::path(rel).lexically_normal();
+    const bool inside = !rel.empty() && r.is_relative() && !r.empty() && *r.begin() != "..";
+    if (!inside || !fs::is_regular_file(fs::symlink_status(file, ec))) {
+      return "<p><em>(no image)</em></p>";
+    }
     const std::vector<unsigned char> bytes = read_file(file);
     const std::string key = fmt::format("{:016x}", XXH3_64bits(bytes.data(), bytes.size()));
     if (!data_.contains(key)) data_[key] = base64(bytes);

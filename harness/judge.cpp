@@ -57,7 +57,7 @@ cv::Mat without_ignored(const cv::Mat& render, const cv::Mat& golden, const Tole
     for (int y = 0; y < mask.rows; ++y) {
       for (int x = 0; x < mask.cols; ++x) {
         const cv::Vec4b m = mask.at<cv::Vec4b>(y, x);
-        if (m[0] == 0 && m[1] == 0 && m[2] == 0)
+        if (m[0] != 0 || m[1] != 0 || m[2] != 0)
           out.at<cv::Vec4b>(y, x) = golden.at<cv::Vec4b>(y, x);
       }
     }
@@ -131,17 +131,21 @@ ImageVerdict judge(std::string_view image, std::span<const unsigned char> render
     v.image = std::string(image), v.status = Status::kNew, v.message = "no golden yet";
     return v;
   }
+  // Every accepted golden is read, even after one passes: a damaged golden or variant is an
+  // error to repair, not something another variant may hide.
   std::vector<ImageVerdict> tried;
-  for (const fs::path& g : goldens) {
+  for (const fs::path& g : goldens)
     tried.push_back(against(image, render_png, render, g, tolerance));
-    if (tried.back().status == Status::kPass) return tried.back();
+  for (const ImageVerdict& v : tried) {
+    if (v.status == Status::kError) return v;
   }
-  // None passed: report the closest readable golden, or the first error if none was readable.
-  auto rank = [](const ImageVerdict& v) {
-    return std::pair(v.status == Status::kError, v.mismatch_percent);
-  };
-  ImageVerdict best = *std::min_element(tried.begin(), tried.end(),
-                                        [&](auto& a, auto& b) { return rank(a) < rank(b); });
+  for (const ImageVerdict& v : tried) {
+    if (v.status == Status::kPass) return v;
+  }
+  // None passed: report the closest golden.
+  ImageVerdict best = *std::min_element(tried.begin(), tried.end(), [](auto& a, auto& b) {
+    return a.mismatch_percent < b.mismatch_percent;
+  });
   if (want_diff && best.status == Status::kFail && best.mismatch_percent < 100) {
     const cv::Mat golden = read_png_rgba8(best.golden);
     best.diff = resemble::compare(golden, without_ignored(render, golden, tolerance),

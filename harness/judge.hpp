@@ -29,8 +29,9 @@ struct ImageVerdict {
 };
 
 // Judges `render` (the PNG bytes and their decoded RGBA) against `goldens` (accepted variants;
-// the case passes if any does). Missing goldens give kNew, unreadable ones kError (unless
-// another variant passes), a golden of another size kFail with both sizes named.
+// the case passes if any does). Missing goldens give kNew; an unreadable golden or variant
+// gives kError naming it, even when another variant passes; a golden of another size kFail
+// with both sizes named.
 ImageVerdict judge(std::string_view image, std::span<const unsigned char> render_png,
                    const cv::Mat& render, const std::vector<std::filesystem::path>& goldens,
                    const Tolerance& tolerance, bool want_diff);

@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "compare/image_io.hpp"
+#include "harness/escape.hpp"
 
 namespace aosuite::harness {
 
@@ -19,8 +20,8 @@ json to_json(const ImageVerdict& v) {
           {"mismatch_percent", v.mismatch_percent},
           {"mismatch_text", v.mismatch_text},
           {"max_channel_delta", v.max_channel_delta},
-          {"golden", v.golden.string()},
-          {"message", v.message}};
+          {"golden", printable(v.golden.string())},
+          {"message", printable(v.message)}};
 }
 
 ImageVerdict verdict_from_json(const json& j) {
@@ -58,9 +59,9 @@ json to_json(const CaseResult& c) {
             {"max_mismatch_percent", c.tolerance.max_mismatch_percent},
             {"max_channel_delta", c.tolerance.max_channel_delta},
             {"ignore", ignore},
-            {"mask", c.tolerance.mask.string()}}},
+            {"mask", printable(c.tolerance.mask.string())}}},
           {"status", status_name(c.status)},
-          {"message", c.message},
+          {"message", printable(c.message)},
           {"images", images},
           {"files", c.files},
           {"times", times},
@@ -70,12 +71,14 @@ json to_json(const CaseResult& c) {
           {"judge_hash", c.judge_hash},
           {"reused", c.reused},
           {"seconds", c.seconds},
-          {"bless_command", c.bless_command}};
+          {"bless_command", printable(c.bless_command)}};
 }
 
 CaseResult case_from_json(const json& j) {
   CaseResult c;
   c.id = j.at("id"), c.scene = j.at("scene"), c.view = j.at("view");
+  if (!valid_name(c.id))
+    throw std::runtime_error("case id '" + printable(c.id) + "' is not a name");
   c.technique = j.at("technique");
   c.width = j.at("width"), c.height = j.at("height");
   c.params = j.at("params").get<std::map<std::string, std::string>>();
@@ -89,6 +92,13 @@ CaseResult case_from_json(const json& j) {
   c.message = j.at("message");
   for (const json& v : j.at("images")) c.images.push_back(verdict_from_json(v));
   c.files = j.at("files").get<std::map<std::string, std::string>>();
+  for (const auto& [role, file] : c.files) {
+    const fs::path f(file);
+    if (f.parent_path() != c.id || !valid_name(f.filename().string())) {
+      throw std::runtime_error("case '" + c.id + "': file '" + printable(file) +
+                               "' is not inside its case folder");
+    }
+  }
   for (const json& t2 : j.at("times"))
     c.times.push_back({t2.at("pass"), t2.at("gpu_ms")});
   c.ao_effect_less = j.at("ao_effect_less"), c.ao_effect_nothing = j.at("ao_effect_nothing");
@@ -101,14 +111,22 @@ CaseResult case_from_json(const json& j) {
 json to_json(const RunResults& r) {
   json cases = json::array();
   for (const CaseResult& c : r.cases) cases.push_back(to_json(c));
-  return {{"suite", r.suite},       {"suite_file", r.suite_file}, {"gl", r.gl},
-          {"platform", r.platform}, {"shard", r.shard},           {"cases", cases}};
+  return {{"suite", r.suite},
+          {"suite_file", printable(r.suite_file)},
+          {"gl", printable(r.gl)},
+          {"platform", r.platform},
+          {"bless_prefix", printable(r.bless_prefix)},
+          {"shard", r.shard},
+          {"cases", cases}};
 }
 
 RunResults run_from_json(const json& j) {
   RunResults r;
   r.suite = j.at("suite"), r.suite_file = j.at("suite_file"), r.gl = j.at("gl");
   r.platform = j.at("platform"), r.shard = j.at("shard");
+  r.bless_prefix = j.value("bless_prefix", std::string());
+  if (!valid_name(r.suite))
+    throw std::runtime_error("suite '" + printable(r.suite) + "' is not a name");
   for (const json& c : j.at("cases")) r.cases.push_back(case_from_json(c));
   return r;
 }

@@ -35,11 +35,17 @@ struct CaseResult {
 
 struct RunResults {
   std::string suite, suite_file, gl, platform;
+  // "aosuite bless SUITE [--goldens DIR]", shell-quoted: what the printed bless commands start
+  // with.
+  std::string bless_prefix;
   std::string shard;  // "i/n", empty when not sharded
   std::vector<CaseResult> cases;
 };
 
 // Images are kept as paths relative to the report folder; results.json never holds pixels.
+// Free text (messages, paths, the GL string) is written through printable(), so the JSON is
+// valid UTF-8 whatever bytes a path holds. Reading checks what becomes a path: a case id must be
+// a valid_name() and each file must be <case id>/<valid name>, else std::runtime_error.
 nlohmann::json to_json(const CaseResult& c);
 CaseResult case_from_json(const nlohmann::json& j);
 nlohmann::json to_json(const RunResults& r);

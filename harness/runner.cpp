@@ -12,6 +12,7 @@
 
 #include "compare/opencv.hpp"
 #include "harness/case_hash.hpp"
+#include "harness/escape.hpp"
 #include "harness/goldens.hpp"
 #include "renderer/renderer.hpp"
 
@@ -64,8 +65,28 @@ std::vector<const Case*> select(const Suite& suite, const Selection& s) {
   return out;
 }
 
-std::string bless_command(const Suite& suite, const std::string& id) {
-  return fmt::format("aosuite bless {} --filter '^{}$'", suite.file.string(), id);
+std::string bless_prefix(const Suite& suite) {
+  std::string out = "aosuite bless " + shell_quote(suite.file.string());
+  if (suite.goldens_given) out += " --goldens " + shell_quote(suite.goldens.string());
+  return out;
+}
+
+std::string exact_filter(const std::vector<std::string>& ids) {
+  std::string alternatives;
+  for (const std::string& id : ids) {
+    if (!alternatives.empty()) alternatives += '|';
+    for (const char ch : id) {
+      if (std::string_view("\\^$.|?*+()[]{}").find(ch) != std::string_view::npos) {
+        alternatives += '\\';
+      }
+      alternatives += ch;
+    }
+  }
+  return ids.size() == 1 ? "^" + alternatives + "$" : "^(" + alternatives + ")$";
+}
+
+std::string bless_command(std::string_view prefix, const std::vector<std::string>& ids) {
+  return fmt::format("{} --filter {}", prefix, shell_quote(exact_filter(ids)));
 }
 
 namespace {
@@ -202,8 +223,9 @@ void judge_case(const Suite& suite, const Case& c, const std::string& platform, 
       r.files["diff:" + name] = c.id + "/diff_" + name + ".png";
     }
     if (!v.identical && !v.golden.empty() && v.status != Status::kError) {
-      fs::copy_file(v.golden, case_dir / ("golden_" + name + ".png"),
-                    fs::copy_options::overwrite_existing);
+      // A copy written under a temporary name and renamed: never a truncated golden image in
+      // the report, even on a full disk.
+      write_file_atomic(case_dir / ("golden_" + name + ".png"), read_file(v.golden));
       r.files["golden:" + name] = c.id + "/golden_" + name + ".png";
     } else if (v.identical) {
       r.files["golden:" + name] = c.id + "/" + name + ".png";
@@ -213,7 +235,9 @@ void judge_case(const Suite& suite, const Case& c, const std::string& platform, 
     v.diff = {};
     r.images.push_back(std::move(v));
   }
-  if (r.status != Status::kPass) r.bless_command = bless_command(suite, c.id);
+  if (r.status != Status::kPass && r.status != Status::kError) {
+    r.bless_command = bless_command(bless_prefix(suite), {c.id});
+  }
 }
 
 void save_case(const fs::path& report_dir, const CaseResult& r) {
@@ -256,10 +280,25 @@ std::vector<CaseResult> for_each_case(const std::vector<const Case*>& cases, con
   return results;
 }
 
+// The selected cases; an empty selection is an error, found before anything is written: a run
+// that judged nothing is never green and must not replace the last report.
+std::vector<const Case*> select_some(const Suite& suite, const Selection& s) {
+  std::vector<const Case*> cases = select(suite, s);
+  if (!cases.empty()) return cases;
+  std::string why =
+      s.filter.empty() ? std::string("the suite") : "--filter " + shell_quote(s.filter);
+  if (s.shard_count > 1) why += fmt::format(" with shard {}/{}", s.shard_index, s.shard_count);
+  throw std::invalid_argument(fmt::format(
+      "{}: {} selects none of its {} cases; nothing was run (ids: aosuite check {} --list)",
+      printable(suite.file.string()), printable(why), suite.cases.size(),
+      shell_quote(suite.file.string())));
+}
+
 RunResults start(const Suite& suite, const RunOptions& o, std::unique_ptr<rd::Renderer>& first) {
   first = std::make_unique<rd::Renderer>();
   RunResults run;
   run.suite = suite.name, run.suite_file = suite.file.string();
+  run.bless_prefix = bless_prefix(suite);
   // The backend and device after the driver's own three fields: the report names them, and
   // platform_key reads the renderer field alone, so goldens match on EGL and OSMesa alike.
   run.gl = first->gl_description() + " | " + first->gl_source();
@@ -274,10 +313,11 @@ RunResults start(const Suite& suite, const RunOptions& o, std::unique_ptr<rd::Re
 }  // namespace
 
 RunResults check(const Suite& suite, const RunOptions& o) {
+  const std::vector<const Case*> cases = select_some(suite, o.selection);
   std::unique_ptr<rd::Renderer> first;
   RunResults run = start(suite, o, first);
   const std::string gl = run.gl, platform = run.platform;
-  run.cases = for_each_case(select(suite, o.selection), o, std::move(first),
+  run.cases = for_each_case(cases, o, std::move(first),
                             [&](rd::Renderer& renderer, const Case& c, CaseResult& r) {
                               Rendered images;
                               const auto prev = prepare(renderer, gl, c, o, r, images);
@@ -289,21 +329,40 @@ RunResults check(const Suite& suite, const RunOptions& o) {
 }
 
 RunResults bless(const Suite& suite, const BlessOptions& b) {
+  if (!b.tag.empty() && !valid_name(b.tag)) {
+    throw std::invalid_argument(
+        "--variant '" + printable(b.tag) +
+        "' must be letters, digits, - _ . and not start with '.' (it names a file)");
+  }
+  const std::vector<const Case*> cases = select_some(suite, b.run.selection);
   std::unique_ptr<rd::Renderer> first;
   RunResults run = start(suite, b.run, first);
   const std::string gl = run.gl, platform = b.platform ? run.platform : std::string();
-  run.cases =
-      for_each_case(select(suite, b.run.selection), b.run, std::move(first),
-                    [&](rd::Renderer& renderer, const Case& c, CaseResult& r) {
-                      Rendered images;
-                      prepare(renderer, gl, c, b.run, r, images);
-                      for (const std::string& image : c.images) {
-                        write_golden(golden_path(suite.goldens / c.id, image, platform, b.tag),
-                                     images.png.at(image));
-                      }
-                      r.status = Status::kPass;
-                      r.message = "blessed";
-                    });
+  run.cases = for_each_case(
+      cases, b.run, std::move(first), [&](rd::Renderer& renderer, const Case& c, CaseResult& r) {
+        Rendered images;
+        try {
+          prepare(renderer, gl, c, b.run, r, images);
+        } catch (const std::exception& e) {
+          throw std::runtime_error(std::string("could not be rendered: ") + e.what() +
+                                   "; its goldens are untouched");
+        }
+        const fs::path case_dir = suite.goldens / c.id;
+        std::vector<GoldenWrite> writes;
+        std::string written;
+        for (const std::string& image : c.images) {
+          writes.emplace_back(golden_path(case_dir, image, platform, b.tag), images.png.at(image));
+          written += (written.empty() ? "" : ", ") + writes.back().first.string();
+        }
+        remove_stale_temporaries(case_dir);
+        try {
+          replace_goldens(writes);
+        } catch (const std::exception& e) {
+          throw std::runtime_error(std::string("goldens not written: ") + e.what());
+        }
+        r.status = Status::kPass;
+        r.message = "wrote " + written;
+      });
   return run;
 }
 

@@ -14,8 +14,9 @@
 
 namespace aosuite::harness {
 
-// Which cases a command acts on: a regular expression over case ids (searched, not anchored)
-// and a shard i of n (cases i, i+n, i+2n, ... of those the filter keeps).
+// Which cases a command acts on: a regular expression over case ids (searched, not anchored:
+// "sao" keeps every SAO case; "^corner-front-sao-48x27$" exactly one) and a shard i of n
+// (cases i, i+n, i+2n, ... of those the filter keeps).
 struct Selection {
   std::string filter;  // empty: all
   int shard_index = 0, shard_count = 1;
@@ -35,7 +36,8 @@ struct RunOptions {
 };
 
 // Renders and judges the selected cases; writes images, per-case state and results.json into
-// report_dir. Never touches goldens.
+// report_dir. Never touches goldens. Throws std::invalid_argument, before writing anything,
+// when the selection is empty.
 RunResults check(const Suite& suite, const RunOptions& options);
 
 struct BlessOptions {
@@ -43,12 +45,18 @@ struct BlessOptions {
   bool platform = false;  // write the platform's goldens instead of the generic ones
   std::string tag;        // write an extra accepted variant <image>~<tag>.png
 };
-// Writes goldens for the selected cases from fresh (or unchanged) renders. A case that fails to
-// render is reported and its goldens are left alone. Returns one result per case: kPass when
-// blessed, kError when not.
+// Writes goldens for the selected cases from fresh (or unchanged) renders, each case's all or
+// nothing (replace_goldens), after removing stale temporaries a killed bless left there. A case
+// that fails to render or to write is reported and its goldens are left alone. Returns one
+// result per case: kPass when blessed, kError (with the reason) when not. Throws
+// std::invalid_argument for an empty selection or a tag that is not a valid_name().
 RunResults bless(const Suite& suite, const BlessOptions& options);
 
-// The command that blesses one case.
-std::string bless_command(const Suite& suite, const std::string& case_id);
+// "aosuite bless SUITE [--goldens DIR]", shell-quoted.
+std::string bless_prefix(const Suite& suite);
+// The regular expression that matches exactly these case ids: ^id$ or ^(id|id...)$.
+std::string exact_filter(const std::vector<std::string>& ids);
+// `prefix` --filter '<exact_filter(ids)>': the command that blesses exactly these cases.
+std::string bless_command(std::string_view prefix, const std::vector<std::string>& ids);
 
 }  // namespace aosuite::harness

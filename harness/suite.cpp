@@ -7,6 +7,7 @@
 #include <set>
 #include <stdexcept>
 
+#include "harness/escape.hpp"
 #include "renderer/scene_file.hpp"
 #include "renderer/toml_reader.hpp"
 
@@ -102,13 +103,15 @@ void read_common(const Reader& r, const fs::path& dir, const toml::table& t, Com
   if (const toml::node* n = t.get("tolerance")) read_tolerance(r, dir, *n, c.tolerance);
 }
 
-bool valid_id(std::string_view id) {
-  return !id.empty() && std::all_of(id.begin(), id.end(), [](char ch) {
-    return std::isalnum(static_cast<unsigned char>(ch)) || ch == '-' || ch == '_' || ch == '.';
-  });
-}
-
 }  // namespace
+
+bool valid_name(std::string_view id) {
+  return !id.empty() && id.size() <= 200 && id.front() != '.' &&
+         std::all_of(id.begin(), id.end(), [](char ch) {
+           return (ch >= 'a' && ch <= 'z') || (ch >= 'A' && ch <= 'Z') ||
+                  (ch >= '0' && ch <= '9') || ch == '-' || ch == '_' || ch == '.';
+         });
+}
 
 Suite load_suite(const fs::path& file) {
   toml::table root;
@@ -127,8 +130,12 @@ Suite load_suite(const fs::path& file) {
   suite.file = file;
   suite.name = file.stem().string();
   if (const toml::node* n = root.get("name")) suite.name = r.string(*n, "name");
-  if (!valid_id(suite.name)) r.fail(root.source(), "suite name must be letters, digits, - _ .");
-  suite.goldens = dir / ".." / "goldens" / suite.name;
+  if (!valid_name(suite.name)) {
+    r.fail(root.get("name") ? root.get("name")->source() : root.source(),
+           "suite name '" + printable(suite.name) +
+               "' must be letters, digits, - _ . and not start with '.' (it names folders)");
+  }
+  suite.goldens = fs::path("goldens") / suite.name;
   if (const toml::node* n = root.get("goldens")) suite.goldens = dir / r.string(*n, "goldens");
   suite.goldens = suite.goldens.lexically_normal();
 
@@ -199,8 +206,9 @@ Suite load_suite(const fs::path& file) {
         k.tolerance = c.tolerance;
         k.id = fmt::format("{}-{}-{}-{}x{}{}", scene->name, k.view, technique, k.width, k.height,
                            suffix);
-        if (!valid_id(k.id)) {
-          r.fail(t.source(), "case id '" + k.id + "' may hold only letters, digits, - _ .");
+        if (!valid_name(k.id)) {
+          r.fail(t.source(), "case id '" + k.id +
+                                 "' may hold only letters, digits, - _ . and not start with '.'");
         }
         if (!ids.insert(k.id).second) r.fail(t.source(), "duplicate case '" + k.id + "'");
         suite.cases.push_back(std::move(k));

@@ -20,7 +20,8 @@ struct Tolerance {
   double max_mismatch_percent = 0;              // Resemble's rawMisMatchPercentage, inclusive
   int max_channel_delta = 255;                  // largest |new - golden| of any RGBA channel
   std::vector<resemble::Box> ignore;            // left, top, right, bottom, in pixels
-  std::filesystem::path mask;                   // black pixels of this PNG are ignored
+  std::filesystem::path
+      mask;  // pixels where this PNG is not black (any of R, G, B > 0) are ignored
 };
 
 // The images of a case that can be gated against goldens.
@@ -42,9 +43,17 @@ struct Case {
 struct Suite {
   std::string name;
   std::filesystem::path file;
-  std::filesystem::path goldens;  // goldens/<name> unless the suite says otherwise
+  // The suite's `goldens` key (relative to the suite file), else goldens/<name> relative to
+  // the current directory, as reports/<name> is; `--goldens` replaces it (goldens_given).
+  std::filesystem::path goldens;
+  bool goldens_given = false;
   std::vector<Case> cases;
 };
+
+// Whether `name` is safe as one path component of a suite name, case id or variant tag:
+// letters, digits, '-', '_', '.', not starting with '.' (so never "." or ".." nor hidden), at
+// most 200 characters.
+bool valid_name(std::string_view name);
 
 // Parses and expands a suite file. Throws std::runtime_error "file:line:col: reason" for
 // malformed TOML, unknown keys, wrong types, unknown scenes/views/techniques/parameters,

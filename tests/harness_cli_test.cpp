@@ -6,6 +6,7 @@
 
 #include <chrono>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <thread>
@@ -222,6 +223,254 @@ TEST_F(HarnessCli, KilledBlessLeavesEveryGoldenWhole) {
     std::printf("killed after %d ms: %d of %zu goldens replaced\n", delay_ms, replaced,
                 before.size());
   }
+}
+
+// A run that judges nothing is never green, and leaves the last report as it was.
+TEST_F(HarnessCli, AnEmptySelectionIsAnErrorAndKeepsTheLastReport) {
+  ASSERT_EQ(aosuite("bless suites/t.toml").rc, 0);
+  ASSERT_EQ(aosuite("check suites/t.toml --junit junit.xml").rc, 0);
+  const std::string index = read_text(dir_ / "reports" / "t" / "index.html");
+  const std::string results = read_text(dir_ / "reports" / "t" / "results.json");
+  const auto before = goldens();
+  for (const char* command : {"check suites/t.toml --filter nomatch --junit junit.xml",
+                              "bless suites/t.toml --filter nomatch"}) {
+    const test::Outcome r = aosuite(command);
+    EXPECT_EQ(r.rc, 2) << command << "\n" << r.out << r.err;
+    EXPECT_NE(r.err.find("suites/t.toml: --filter nomatch selects none of its 4 cases"),
+              std::string::npos)
+        << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  }
+  EXPECT_EQ(read_text(dir_ / "reports" / "t" / "index.html"), index);
+  EXPECT_EQ(read_text(dir_ / "reports" / "t" / "results.json"), results);
+  EXPECT_NE(read_text(dir_ / "junit.xml").find("tests=\"4\""), std::string::npos);
+  EXPECT_EQ(goldens(), before);
+}
+
+// Damage in the goldens is an ERROR to repair: a truncated golden beside a valid variant, and
+// a file where the case's golden folder should be (not NEW with a bless hint).
+TEST_F(HarnessCli, DamagedGoldensAreErrorsNotPassesOrNew) {
+  ASSERT_EQ(aosuite("bless suites/t.toml").rc, 0);
+  const fs::path c = dir_ / "goldens" / "t" / "corner-inside-sao-48x27";
+  fs::copy_file(c / "with_ao.png", c / "with_ao~ok.png");
+  const std::vector<unsigned char> whole = read_file(c / "with_ao.png");
+  std::ofstream(c / "with_ao.png", std::ios::binary | std::ios::trunc)
+      .write(reinterpret_cast<const char*>(whole.data()),
+             static_cast<std::streamsize>(whole.size() / 2));
+  test::Outcome r = aosuite("check suites/t.toml");
+  EXPECT_EQ(r.rc, 2) << r.out << r.err;
+  EXPECT_NE(r.out.find("ERROR corner-inside-sao-48x27"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("with_ao.png"), std::string::npos) << r.out;
+
+  fs::remove_all(c);
+  std::ofstream(c) << "a file where the folder should be";
+  r = aosuite("check suites/t.toml");
+  EXPECT_EQ(r.rc, 2) << r.out << r.err;
+  EXPECT_NE(r.out.find("ERROR corner-inside-sao-48x27"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("cannot read the golden folder"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("to accept corner-inside-sao-48x27"), std::string::npos) << r.out;
+}
+
+// `bless --platform` replaces the generic golden on this platform; the variants accepted beside
+// it stay accepted.
+TEST_F(HarnessCli, PlatformGoldensKeepTheGenericVariants) {
+  ASSERT_EQ(aosuite("bless suites/t.toml --filter sao").rc, 0);
+  ASSERT_EQ(aosuite("bless suites/t.toml --filter sao --variant darker", broken()).rc, 0);
+  ASSERT_EQ(aosuite("bless suites/t.toml --filter sao --platform").rc, 0);
+  const test::Outcome r = aosuite("check suites/t.toml --filter sao", broken());
+  EXPECT_EQ(r.rc, 0) << r.out << r.err;  // the darker variant still passes
+}
+
+// Goldens of a suite outside the project land in the working directory's goldens/, or where
+// --goldens says (and the printed bless command says so too).
+TEST_F(HarnessCli, GoldensFolderIsTheWorkingDirectorysOrGiven) {
+  fs::create_directories(dir_ / "elsewhere" / "deep");
+  fs::copy_file(dir_ / "suites" / "t.toml", dir_ / "elsewhere" / "deep" / "o.toml");
+  EXPECT_EQ(aosuite("bless elsewhere/deep/o.toml --filter inside-sao").rc, 0);
+  EXPECT_TRUE(fs::exists(dir_ / "goldens" / "o" / "corner-inside-sao-48x27" / "with_ao.png"));
+  EXPECT_FALSE(fs::exists(dir_ / "elsewhere" / "goldens"));
+  const test::Outcome r = aosuite("check elsewhere/deep/o.toml --filter inside --goldens g2");
+  EXPECT_EQ(r.rc, 1) << r.out << r.err;
+  EXPECT_NE(r.out.find("aosuite bless elsewhere/deep/o.toml --goldens g2 --filter "
+                       "'^corner-inside-sao-48x27$'"),
+            std::string::npos)
+      << r.out;
+  EXPECT_FALSE(fs::exists(dir_ / "g2"));  // check writes no goldens
+}
+
+// bless's log shows each case as it is written, also when redirected to a file.
+TEST_F(HarnessCli, BlessLogIsWrittenPerCaseWhenRedirected) {
+  std::ofstream(dir_ / "suites" / "t.toml", std::ios::app) << "[[case]]\nscene = \"village\"\n"
+                                                              "width = 480\nheight = 270\n";
+  const std::string pid_file = (dir_ / "pid").string(), log = (dir_ / "bless.log").string();
+  std::system(("cd " + dir_.path().string() + " && (exec " + AOSUITE_BIN +
+               " bless suites/t.toml > " + log + " 2>&1 & echo $! > " + pid_file + ")")
+                  .c_str());
+  // The log's first line must come while bless is still at work: before the last (village)
+  // goldens exist. (Buffered output would appear only at exit, after all of them.)
+  auto village_goldens = [&] {
+    int n = 0;
+    for (const auto& [path, bytes] : goldens())
+      n += path.string().find("village-") != std::string::npos;
+    return n;
+  };
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (read_text(log).find("BLESSED") == std::string::npos &&
+         std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  const int written = fs::exists(dir_ / "goldens") ? village_goldens() : 0;
+  const pid_t pid = std::stoi(read_text(pid_file));
+  kill(pid, SIGKILL);
+  while (kill(pid, 0) == 0) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  EXPECT_LT(written, 4) << "nothing in the log before bless ended:\n" << read_text(log);
+  EXPECT_NE(read_text(log).find(" BLESSED corner-"), std::string::npos) << read_text(log);
+}
+
+// Nothing a suite, an option or a shard's results says writes or reads outside its folders.
+TEST_F(HarnessCli, PathsStayInsideTheirFolders) {
+  test::Outcome r = aosuite("bless suites/t.toml --variant ../../evil");
+  EXPECT_EQ(r.rc, 2) << r.out << r.err;
+  EXPECT_NE(r.err.find("--variant '../../evil'"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "goldens"));
+  std::ofstream(dir_ / "suites" / "up.toml") << "name = \"..\"\n[[case]]\nscene = \"corner\"\n";
+  r = aosuite("check suites/up.toml");
+  EXPECT_EQ(r.rc, 2) << r.out << r.err;
+  EXPECT_NE(r.err.find("suites/up.toml:1:"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "index.html"));
+
+  ASSERT_EQ(aosuite("bless suites/t.toml").rc, 0);
+  ASSERT_EQ(aosuite("check suites/t.toml --shard 0/2 --report a").rc, 0);
+  std::ofstream(dir_ / "secret.txt") << "TOPSECRET";
+  const std::string results = read_text(dir_ / "a" / "results.json");
+  auto tampered = [&](const std::function<void(nlohmann::json&)>& edit) {
+    nlohmann::json j = nlohmann::json::parse(results);
+    edit(j["cases"][0]);
+    std::ofstream(dir_ / "a" / "results.json", std::ios::trunc) << j.dump();
+    const test::Outcome m = aosuite("report merge --out m a");
+    EXPECT_EQ(m.rc, 2) << m.out << m.err;
+    EXPECT_NE(m.err.find("a/results.json: malformed run results"), std::string::npos) << m.err;
+    EXPECT_FALSE(fs::exists(dir_ / "m"));
+  };
+  tampered([](nlohmann::json& c) { c["files"]["with_ao"] = "../../secret.txt"; });
+  tampered([&](nlohmann::json& c) { c["files"]["with_ao"] = (dir_ / "secret.txt").string(); });
+  tampered([](nlohmann::json& c) { c["id"] = "../../x"; });
+  std::ofstream(dir_ / "a" / "results.json", std::ios::trunc) << results;
+  // A link in a shard's case folder is not followed into the merged report.
+  const std::string id = nlohmann::json::parse(results)["cases"][0]["id"];
+  const fs::path image = dir_ / "a" / "cases" / id / "with_ao.png";
+  fs::remove(image);
+  fs::create_symlink(dir_ / "secret.txt", image);
+  r = aosuite("report merge --out m a");
+  EXPECT_EQ(r.rc, 0) << r.out << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "m" / "cases" / id / "with_ao.png"));
+  EXPECT_EQ(read_text(dir_ / "m" / "index.html").find("VE9QU0VDUkVU"), std::string::npos);
+  EXPECT_FALSE(fs::exists(dir_ / "secret.png"));
+}
+
+// Paths with bytes that are not UTF-8, or control characters: the report, results.json and
+// JUnit stay whole and well-formed.
+TEST_F(HarnessCli, OddBytesInPathsAreEscapedEverywhere) {
+  const std::string odd = "\"$(printf 'g\\377\\001')\"";
+  ASSERT_EQ(aosuite("bless suites/t.toml --goldens " + odd).rc, 0);
+  const fs::path g = dir_ / "g\xff\x01" / "corner-inside-sao-48x27" / "with_ao.png";
+  ASSERT_TRUE(fs::exists(g));
+  std::ofstream(g, std::ios::trunc) << "garbage";
+  const test::Outcome r = aosuite("check suites/t.toml --junit junit.xml --goldens " + odd);
+  EXPECT_EQ(r.rc, 2) << r.out << r.err;
+  EXPECT_NE(r.out.find("g\\xff\\x01/corner-inside-sao-48x27/with_ao.png"), std::string::npos)
+      << r.out;
+  EXPECT_EQ(r.out.find('\x01'), std::string::npos);
+  const auto results = nlohmann::json::parse(read_text(dir_ / "reports" / "t" / "results.json"));
+  EXPECT_EQ(results["cases"].size(), 4u);
+  EXPECT_EQ(test::run_shell("xmllint --noout " + (dir_ / "junit.xml").string(), dir_.path()).rc, 0);
+  const std::string html = read_text(dir_ / "reports" / "t" / "index.html");
+  EXPECT_NE(html.find("g\\xff\\x01/corner-"), std::string::npos);
+  EXPECT_EQ(html.find('\xff'), std::string::npos);
+  const test::Outcome missing = aosuite("check \"$(printf 'x\\377.toml')\"");
+  EXPECT_EQ(missing.rc, 2);
+  EXPECT_NE(missing.err.find("x\\xff.toml"), std::string::npos) << missing.err;
+}
+
+// The report's copy of a golden is written whole or not at all, even when the disk is full
+// (here: a file size limit).
+TEST_F(HarnessCli, ReportGoldenCopiesAreNeverTruncated) {
+  ASSERT_EQ(aosuite("bless suites/t.toml").rc, 0);
+  cv::Mat noise(400, 400, CV_8UC4);
+  cv::randu(noise, cv::Scalar::all(0), cv::Scalar::all(256));
+  const fs::path golden = dir_ / "goldens" / "t" / "corner-inside-sao-48x27" / "with_ao.png";
+  write_png_rgba8(golden, noise);
+  ASSERT_GT(fs::file_size(golden), 200u * 1024);
+  const test::Outcome r =
+      test::run_shell("cd " + dir_.path().string() + " && trap '' XFSZ && " + "ulimit -f 200 && " +
+                          AOSUITE_BIN + " check suites/t.toml",
+                      dir_.path());
+  EXPECT_EQ(r.rc, 2) << r.out << r.err;
+  const fs::path c = dir_ / "reports" / "t" / "cases" / "corner-inside-sao-48x27";
+  for (const auto& e : fs::directory_iterator(c)) {
+    const std::string name = e.path().filename().string();
+    EXPECT_FALSE(name.starts_with(".")) << "temporary left: " << name;
+    if (name.ends_with(".png")) {
+      EXPECT_NO_THROW(read_png_rgba8(e.path())) << name << " is damaged";
+    }
+  }
+}
+
+// A case whose second golden cannot be written keeps its first; bless says what happened.
+// Stale temporaries of a killed bless are cleaned.
+TEST_F(HarnessCli, BlessReplacesACaseAllOrNothingAndSaysWhy) {
+  std::ofstream(dir_ / "suites" / "t.toml", std::ios::app)
+      << "images = [\"with_ao\", \"ao_only\"]\n";
+  ASSERT_EQ(aosuite("bless suites/t.toml --filter inside-sao").rc, 0);
+  const fs::path c = dir_ / "goldens" / "t" / "corner-inside-sao-48x27";
+  const std::vector<unsigned char> first = read_file(c / "with_ao.png");
+  fs::remove(c / "ao_only.png");
+  fs::create_directories(c / "ao_only.png");
+  const fs::path stale = c / ".with_ao.png.tmp-AbC123";
+  std::ofstream(stale) << "x";
+  fs::last_write_time(stale, fs::file_time_type::clock::now() - std::chrono::hours(1));
+  const test::Outcome r = aosuite("bless suites/t.toml --filter inside-sao", broken());
+  EXPECT_EQ(r.rc, 2) << r.out << r.err;
+  EXPECT_NE(r.out.find("NOT BLESSED corner-inside-sao-48x27: goldens not written: "),
+            std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("ao_only.png: is not a file; nothing was replaced"), std::string::npos)
+      << r.out;
+  EXPECT_EQ(r.out.find("could not be rendered"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("0 of 1 cases blessed"), std::string::npos) << r.out;
+  EXPECT_EQ(read_file(c / "with_ao.png"), first);
+  EXPECT_FALSE(fs::exists(stale));
+  for (const auto& e : fs::directory_iterator(c)) {
+    EXPECT_FALSE(e.path().filename().string().starts_with(".")) << e.path();
+  }
+}
+
+// The printed commands are shell-quoted and bless exactly the failing cases; one of them
+// blesses them all.
+TEST_F(HarnessCli, PrintedBlessCommandsAreQuotedAndExact) {
+  fs::create_directories(dir_ / "my 'suites'");
+  fs::copy_file(dir_ / "suites" / "t.toml", dir_ / "my 'suites'" / "t.toml");
+  const std::string suite = "\"my 'suites'/t.toml\"";
+  ASSERT_EQ(aosuite("bless " + suite).rc, 0);
+  const auto before = goldens();
+  test::Outcome r = aosuite("check " + suite, broken());
+  ASSERT_EQ(r.rc, 1) << r.out << r.err;
+  const std::string all = "to accept all 2 failing and new cases: aosuite bless ";
+  const std::size_t at = r.out.find(all);
+  ASSERT_NE(at, std::string::npos) << r.out;
+  std::string command = r.out.substr(at + all.size());
+  command = command.substr(0, command.find('\n'));
+  EXPECT_EQ(command.rfind("'my '\\''suites'\\''/t.toml' --filter '^(corner-", 0), 0u) << command;
+  r = test::run_shell(
+      "cd " + dir_.path().string() + " && " + broken() + " " + AOSUITE_BIN + " bless " + command,
+      dir_.path());
+  ASSERT_EQ(r.rc, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("2 of 2 cases blessed"), std::string::npos) << r.out;
+  for (const auto& [path, bytes] : goldens()) {
+    const bool sao = path.string().find("-sao-") != std::string::npos;
+    EXPECT_EQ(before.at(path) == bytes, !sao) << path;
+  }
+  EXPECT_EQ(aosuite("check " + suite, broken()).rc, 0);
 }
 
 }  // namespace

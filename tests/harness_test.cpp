@@ -1,6 +1,8 @@
 // The harness's parts without OpenGL: suite files, golden lookup, verdicts, shards, results.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
+#include <chrono>
 #include <fstream>
 
 #include "compare/opencv.hpp"
@@ -62,8 +64,8 @@ params = { radius = 3, level_weights = [1, 0, 0, 0, 0], blur = "none" }
 tolerance = { max_channel_delta = 9 }
 )"));
   EXPECT_EQ(s.name, "s");
-  EXPECT_EQ(s.goldens, (dir_ / "goldens" / "s").lexically_normal());
-  ASSERT_EQ(s.cases.size(), 5u);  // corner: 2 views x 2 techniques; village: 1
+  EXPECT_EQ(s.goldens, fs::path("goldens") / "s");  // beside reports/, in the working directory
+  ASSERT_EQ(s.cases.size(), 5u);                    // corner: 2 views x 2 techniques; village: 1
   EXPECT_EQ(s.cases[0].id, "corner-" + s.cases[0].view + "-alchemy-64x36");
   EXPECT_EQ(s.cases[0].params.samples, 4);
   EXPECT_EQ(s.cases[0].params.radius,
@@ -111,6 +113,37 @@ TEST_F(SuiteFile, MalformedSuitesNameFileLineAndReason) {
   }
 }
 
+// The default goldens folder does not follow the suite file out of the project: like reports/,
+// it is goldens/<name> in the working directory; only the suite's own key is relative to it.
+TEST_F(SuiteFile, GoldensAreFoundFromTheWorkingDirectoryUnlessTheSuiteSaysWhere) {
+  const fs::path elsewhere = dir_ / "outside" / "deep" / "s.toml";
+  fs::create_directories(elsewhere.parent_path());
+  std::ofstream(elsewhere) << "[[case]]\nscene = \"plane\"\n";
+  EXPECT_EQ(load_suite(elsewhere).goldens, fs::path("goldens/s"));
+  std::ofstream(elsewhere) << "goldens = \"../g\"\n[[case]]\nscene = \"plane\"\n";
+  EXPECT_EQ(load_suite(elsewhere).goldens, (dir_ / "outside" / "g").lexically_normal());
+  // The project's own suites name their goldens, so they are found from any directory.
+  const Suite d = load_suite(fs::path(AOSUITE_SOURCE_DIR) / "suites" / "default.toml");
+  EXPECT_EQ(d.goldens, (fs::path(AOSUITE_SOURCE_DIR) / "goldens" / "default").lexically_normal());
+  EXPECT_TRUE(fs::is_directory(d.goldens / d.cases.front().id)) << d.goldens;
+}
+
+// A suite's name names its report and goldens folders: nothing that leaves them.
+TEST_F(SuiteFile, NamesThatWouldLeaveTheirFoldersAreRejected) {
+  for (const char* name : {"..", ".", ".hidden", "a/b", "a\\u0001b", ""}) {
+    const std::string msg =
+        error_of(std::string("name = \"") + name + "\"\n[[case]]\nscene = \"plane\"\n");
+    EXPECT_NE(msg.find(":1:"), std::string::npos) << name << " -> " << msg;
+    EXPECT_NE(msg.find("suite name"), std::string::npos) << name << " -> " << msg;
+    EXPECT_EQ(msg.find('\x01'), std::string::npos) << msg;  // shown escaped
+  }
+  EXPECT_TRUE(valid_name("default"));
+  EXPECT_TRUE(valid_name("corner-front-sao-48x27-r1.5"));
+  for (const char* bad : {"..", ".", ".x", "../evil", "a/b", "a~b", "a b", ""}) {
+    EXPECT_FALSE(valid_name(bad)) << bad;
+  }
+}
+
 TEST(Goldens, PlatformKeyIsTheRendererFieldSanitised) {
   EXPECT_EQ(
       platform_key("Mesa | llvmpipe (LLVM 15.0.6, 256 bits) | 4.5 (Core Profile) Mesa 22.3.6"),
@@ -142,6 +175,92 @@ TEST(Goldens, PlatformGoldensReplaceGenericOnesAndVariantsFollowThePrimary) {
   EXPECT_TRUE(accepted_goldens(c, "no_ao", "").empty());
   EXPECT_EQ(golden_path(c, "with_ao", "", ""), c / "with_ao.png");
   EXPECT_EQ(golden_path(c, "with_ao", "llvm", "x"), c / "llvm" / "with_ao~x.png");
+}
+
+// `bless --platform` replaces the generic golden on that platform, not the variants accepted
+// beside it.
+TEST(Goldens, APlatformGoldenKeepsTheGenericVariantsAccepted) {
+  test::TempDir dir;
+  const fs::path c = dir.path();
+  for (const fs::path& p : {c / "with_ao.png", c / "with_ao~old-driver.png",
+                            c / "llvm" / "with_ao.png", c / "llvm" / "with_ao~x.png"}) {
+    fs::create_directories(p.parent_path());
+    std::ofstream(p) << "x";
+  }
+  EXPECT_EQ(accepted_goldens(c, "with_ao", "llvm"),
+            (std::vector<fs::path>{c / "llvm" / "with_ao.png", c / "llvm" / "with_ao~x.png",
+                                   c / "with_ao~old-driver.png"}));
+  EXPECT_EQ(accepted_goldens(c, "with_ao", "other"),
+            (std::vector<fs::path>{c / "with_ao.png", c / "with_ao~old-driver.png"}));
+}
+
+// A golden folder that exists but cannot be listed is an error to fix, not "no golden yet".
+TEST(Goldens, AnUnreadableGoldenFolderIsAnErrorNotMissing) {
+  test::TempDir dir;
+  EXPECT_TRUE(accepted_goldens(dir.path() / "absent", "with_ao", "llvm").empty());
+  std::ofstream(dir.path() / "case") << "a file where the folder should be";
+  try {
+    accepted_goldens(dir.path() / "case", "with_ao", "");
+    ADD_FAILURE() << "no error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("case: cannot read the golden folder"), std::string::npos)
+        << e.what();
+  }
+  fs::create_directories(dir.path() / "c2");
+  std::ofstream(dir.path() / "c2" / "llvm") << "a file where the platform folder should be";
+  EXPECT_THROW(accepted_goldens(dir.path() / "c2", "with_ao", "llvm"), std::runtime_error);
+  if (::geteuid() != 0) {  // root reads any folder
+    fs::create_directories(dir.path() / "locked");
+    fs::permissions(dir.path() / "locked", fs::perms::none);
+    EXPECT_THROW(accepted_goldens(dir.path() / "locked", "with_ao", ""), std::runtime_error);
+    fs::permissions(dir.path() / "locked", fs::perms::owner_all);
+  }
+}
+
+// A case's goldens are replaced all or nothing: a failure on the second file leaves the first
+// as it was, and no temporary behind.
+TEST(Goldens, ReplacingACaseIsAllOrNothing) {
+  test::TempDir dir;
+  const fs::path c = dir.path() / "case";
+  fs::create_directories(c / "ao_only.png");  // cannot be replaced by a file
+  std::ofstream(c / "with_ao.png") << "old";
+  const std::vector<unsigned char> bytes{'n', 'e', 'w'};
+  try {
+    replace_goldens({{c / "with_ao.png", bytes}, {c / "ao_only.png", bytes}});
+    ADD_FAILURE() << "no error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("ao_only.png"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("nothing was replaced"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(read_file(c / "with_ao.png"), (std::vector<unsigned char>{'o', 'l', 'd'}));
+  fs::remove(c / "ao_only.png");
+  replace_goldens({{c / "with_ao.png", bytes}, {c / "llvm" / "ao_only.png", bytes}});
+  EXPECT_EQ(read_file(c / "with_ao.png"), bytes);
+  EXPECT_EQ(read_file(c / "llvm" / "ao_only.png"), bytes);
+  int files = 0;
+  for ([[maybe_unused]] const auto& e : fs::recursive_directory_iterator(c)) ++files;
+  EXPECT_EQ(files, 3);  // with_ao.png, llvm/, llvm/ao_only.png: no temporaries
+}
+
+// What a killed bless leaves is removed by the next one; a live bless's temporaries are not.
+TEST(Goldens, StaleTemporariesAreRemoved) {
+  test::TempDir dir;
+  const fs::path c = dir.path();
+  const fs::path old_form = c / ".with_ao.png.tmp-AbC123";
+  const fs::path dead = c / "llvm" / ".with_ao.png.bless-999999999-AbC123";
+  const fs::path live = c / fmt::format(".with_ao.png.bless-{}-AbC123", ::getpid());
+  const fs::path young = c / ".ao_only.png.tmp-XyZ789";
+  for (const fs::path& p : {old_form, dead, live, young, c / "with_ao.png"}) {
+    fs::create_directories(p.parent_path());
+    std::ofstream(p) << "x";
+  }
+  fs::last_write_time(old_form, fs::file_time_type::clock::now() - std::chrono::hours(1));
+  EXPECT_EQ(remove_stale_temporaries(c), 2);
+  EXPECT_FALSE(fs::exists(old_form));
+  EXPECT_FALSE(fs::exists(dead));
+  EXPECT_TRUE(fs::exists(live));
+  EXPECT_TRUE(fs::exists(young));  // perhaps an older bless still writing
+  EXPECT_TRUE(fs::exists(c / "with_ao.png"));
 }
 
 class Judge : public ::testing::Test {
@@ -202,7 +321,7 @@ TEST_F(Judge, MismatchIsMeasuredAgainstTheAllowedPercentage) {
   EXPECT_EQ(v.max_channel_delta, 100);
 }
 
-TEST_F(Judge, IgnoredBoxesAndMaskBlackPixelsAreNotJudged) {
+TEST_F(Judge, IgnoredBoxesAreNotJudged) {
   cv::Mat g = render_.clone();
   g(cv::Rect(10, 5, 3, 2)).setTo(cv::Scalar(0, 0, 0, 255));
   const fs::path file = golden("g.png", g);
@@ -211,11 +330,26 @@ TEST_F(Judge, IgnoredBoxesAndMaskBlackPixelsAreNotJudged) {
   EXPECT_EQ(run({file}, t).status, Status::kPass);
   t.ignore = {{10, 5, 11, 6}};
   EXPECT_EQ(run({file}, t).status, Status::kFail);
-  t.ignore.clear();
-  cv::Mat mask(render_.size(), CV_8UC4, cv::Scalar(255, 255, 255, 255));
-  mask(cv::Rect(10, 5, 3, 2)).setTo(cv::Scalar(0, 0, 0, 255));
-  t.mask = golden("mask.png", mask);
+}
+
+// README: "pixels where the mask is non-zero are ignored": paint what to hide white.
+TEST_F(Judge, MaskNonZeroPixelsAreIgnoredAndBlackOnesJudged) {
+  cv::Mat g = render_.clone();
+  g(cv::Rect(10, 5, 3, 2)).setTo(cv::Scalar(0, 0, 0, 255));
+  const fs::path file = golden("g.png", g);
+  Tolerance t;
+  cv::Mat mask(render_.size(), CV_8UC4, cv::Scalar(0, 0, 0, 255));
+  mask(cv::Rect(10, 5, 3, 2)).setTo(cv::Scalar(255, 255, 255, 255));
+  t.mask = golden("hide_changed.png", mask);
   EXPECT_EQ(run({file}, t).status, Status::kPass);
+  mask(cv::Rect(10, 5, 3, 2)).setTo(cv::Scalar(0, 1, 0, 255));  // any non-zero channel
+  t.mask = golden("hide_changed_dim.png", mask);
+  EXPECT_EQ(run({file}, t).status, Status::kPass);
+  // The opposite mask hides everything but the change: the change is judged and fails.
+  cv::Mat inverse(render_.size(), CV_8UC4, cv::Scalar(255, 255, 255, 255));
+  inverse(cv::Rect(10, 5, 3, 2)).setTo(cv::Scalar(0, 0, 0, 255));
+  t.mask = golden("hide_rest.png", inverse);
+  EXPECT_EQ(run({file}, t).status, Status::kFail);
 }
 
 TEST_F(Judge, AnyAcceptedVariantPasses) {
@@ -227,6 +361,27 @@ TEST_F(Judge, AnyAcceptedVariantPasses) {
   EXPECT_EQ(v.status, Status::kPass);
   EXPECT_EQ(v.golden, close);
   EXPECT_EQ(run({far}).status, Status::kFail);
+}
+
+// A truncated golden is damage to repair: ERROR, whether it is the primary or a variant and
+// whether or not another variant passes or fails.
+TEST_F(Judge, ATruncatedGoldenBesideAValidVariantIsAnError) {
+  const fs::path good = golden("g~ok.png", render_);
+  cv::Mat other = render_.clone();
+  other.setTo(cv::Scalar(0, 0, 0, 255));
+  const fs::path far = golden("g~far.png", other);
+  const std::vector<unsigned char> whole = encode_png_rgba8(render_, 0);
+  write_file_atomic(dir_ / "g.png", std::span<const unsigned char>(whole).first(whole.size() / 2));
+  for (const auto& goldens : std::vector<std::vector<fs::path>>{{dir_ / "g.png", good},
+                                                                {good, dir_ / "g.png"},
+                                                                {dir_ / "g.png", far},
+                                                                {far, dir_ / "g.png"}}) {
+    const ImageVerdict v = run(goldens);
+    EXPECT_EQ(v.status, Status::kError) << goldens[0] << " " << goldens[1];
+    EXPECT_EQ(v.golden, dir_ / "g.png");
+    EXPECT_NE(v.message.find("g.png"), std::string::npos) << v.message;
+  }
+  EXPECT_EQ(run({good}).status, Status::kPass);
 }
 
 TEST(Shards, PartitionTheFilteredCasesAndHonourGoogleTestVariables) {
@@ -258,6 +413,30 @@ TEST(Shards, PartitionTheFilteredCasesAndHonourGoogleTestVariables) {
   EXPECT_THROW(select(s, sel), std::invalid_argument);
 }
 
+// --filter searches ids; the filter printed to bless failing cases matches exactly them.
+TEST(Shards, TheExactFilterMatchesWholeIdsOnly) {
+  Suite s;
+  for (const std::string id : {"corner-front-alchemy-48x27", "x-corner-front-alchemy-48x27",
+                               "corner-front-alchemy-48x27-r1.5", "corner-front-alchemy-48x27-r1x5",
+                               "plane-above-sao-8x8"}) {
+    s.cases.emplace_back().id = id;
+  }
+  auto ids = [&](const std::string& filter) {
+    std::vector<std::string> out;
+    for (const Case* c : select(s, Selection{.filter = filter})) out.push_back(c->id);
+    return out;
+  };
+  EXPECT_EQ(ids("front-alchemy").size(), 4u);  // searched: documented, and what ctest -R does
+  EXPECT_EQ(ids(exact_filter({"corner-front-alchemy-48x27"})),
+            std::vector<std::string>{"corner-front-alchemy-48x27"});
+  EXPECT_EQ(ids(exact_filter({"corner-front-alchemy-48x27-r1.5", "plane-above-sao-8x8"})),
+            (std::vector<std::string>{"corner-front-alchemy-48x27-r1.5", "plane-above-sao-8x8"}));
+  s.file = "my suites/it's.toml";
+  s.goldens = "g", s.goldens_given = true;
+  EXPECT_EQ(bless_command(bless_prefix(s), {"a-b", "c.d"}),
+            R"(aosuite bless 'my suites/it'\''s.toml' --goldens g --filter '^(a-b|c\.d)$')");
+}
+
 TEST(Results, RoundTripThroughJson) {
   CaseResult c;
   c.id = "a-b-sao-8x8", c.scene = "a", c.view = "b", c.technique = "sao", c.width = c.height = 8;
@@ -269,11 +448,12 @@ TEST(Results, RoundTripThroughJson) {
   v.mismatch_text = "1.25";
   v.golden = "g/with_ao.png";
   c.images = {v};
-  c.files = {{"with_ao", "a/with_ao.png"}};
+  c.files = {{"with_ao", "a-b-sao-8x8/with_ao.png"}};
   c.times = {{"ao", 1.5}};
   c.input_hash = "12", c.judge_hash = "34";
   RunResults r;
   r.suite = "s", r.gl = "gl", r.platform = "p", r.cases = {c};
+  r.bless_prefix = "aosuite bless suites/s.toml";
   const RunResults back = run_from_json(to_json(r));
   EXPECT_EQ(to_json(back), to_json(r));
   EXPECT_EQ(back.cases[0].tolerance.mode, resemble::Mode::kAntialiasing);
@@ -301,6 +481,55 @@ TEST(HtmlReport, LinksTheLatestSweepBesideIt) {
 TEST(Escape, MarkupCharactersAreEscaped) {
   EXPECT_EQ(escape_markup(R"(<a href="x">'&'</a>)"),
             "&lt;a href=&quot;x&quot;&gt;&#39;&amp;&#39;&lt;/a&gt;");
+}
+
+// Bytes that are not UTF-8 and control characters become visible escapes: JSON, XML and a
+// terminal stay well-formed; valid text (accents, CJK, emoji) is kept.
+TEST(Escape, NonUtf8AndControlBytesAreEscaped) {
+  EXPECT_EQ(printable("caf\xc3\xa9 \xe6\x97\xa5 \xf0\x9f\x98\x80"),
+            "caf\xc3\xa9 \xe6\x97\xa5 \xf0\x9f\x98\x80");
+  EXPECT_EQ(printable("a\xff"
+                      "b"),
+            "a\\xffb");
+  EXPECT_EQ(printable("line\nfeed\ttab\x01\x7f"), "line\\x0afeed\\x09tab\\x01\\x7f");
+  EXPECT_EQ(printable("\xc2\x85"), "\\u0085");              // C1 control
+  EXPECT_EQ(printable("\xc0\xaf"), "\\xc0\\xaf");           // overlong '/'
+  EXPECT_EQ(printable("\xed\xa0\x80"), "\\xed\\xa0\\x80");  // a surrogate
+  EXPECT_EQ(printable("\xe6\x97"), "\\xe6\\x97");           // cut short
+  EXPECT_EQ(escape_markup("<\x01\xff>"), "&lt;\\x01\\xff&gt;");
+  EXPECT_EQ(shell_quote("suites/t.toml"), "suites/t.toml");
+  EXPECT_EQ(shell_quote("it's"), R"('it'\''s')");
+  EXPECT_EQ(shell_quote("a\xff'b"), R"($'a\xff\'b')");
+  EXPECT_EQ(shell_quote(""), "''");
+}
+
+// results.json of any path is valid JSON; a shard's results.json cannot point outside its
+// folders.
+TEST(Results, AnyBytesMakeValidJsonAndReadPathsStayInside) {
+  CaseResult c;
+  c.id = "a-b-sao-8x8", c.scene = "a", c.view = "b", c.technique = "sao";
+  c.status = Status::kError, c.message = "dir\xff\x01/with_ao.png: cannot read";
+  c.files = {{"with_ao", "a-b-sao-8x8/with_ao.png"}};
+  RunResults r;
+  r.suite = "s", r.suite_file = "suites\xfe/s.toml", r.cases = {c};
+  const std::string text = to_json(r).dump();
+  EXPECT_NE(text.find("dir\\\\xff\\\\x01/with_ao.png"), std::string::npos) << text;
+  EXPECT_EQ(run_from_json(nlohmann::json::parse(text)).cases.size(), 1u);
+  for (const auto& [key, value] :
+       std::vector<std::pair<std::string, std::string>>{{"id", "../../escape"},
+                                                        {"id", ".."},
+                                                        {"files", "../../../etc/hostname"},
+                                                        {"files", "/etc/hostname"},
+                                                        {"files", "a-b-sao-8x8/../../x.png"},
+                                                        {"files", "other-case/with_ao.png"}}) {
+    nlohmann::json j = to_json(c);
+    if (key == "id") {
+      j["id"] = value;
+    } else {
+      j["files"]["with_ao"] = value;
+    }
+    EXPECT_THROW(case_from_json(j), std::runtime_error) << key << " = " << value;
+  }
 }
 
 }  // namespace
