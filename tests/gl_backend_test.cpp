@@ -91,6 +91,11 @@ TEST(GlBackend, BadChoicesExitTwoInOneLineAndWriteNothing) {
            Bad{"AOSUITE_GL_DEVICE=x " + kBin + render, "AOSUITE_GL_DEVICE: 'x'"},
            Bad{"AOSUITE_GL=vulkan " + kBin + render, "unknown GL backend 'vulkan'"},
            Bad{kBin + render + " --gl osmesa --gl-device 0", "OSMesa has none"},
+           // No EGL driver at all (GLVND finds no vendor library), and one below OpenGL 4.5.
+           Bad{"__EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent.json " + kBin + render + " --gl egl",
+               "no EGL driver found"},
+           Bad{"MESA_GL_VERSION_OVERRIDE=3.3 " + kBin + render + " --gl egl",
+               "no OpenGL 4.5 core context"},
        }) {
     const test::Outcome o = test::run_shell(bad.command, dir.path());
     EXPECT_EQ(o.rc, 2) << bad.command;

@@ -183,6 +183,8 @@ class EglContext final : public GlContext {
 };
 
 const std::string kSurfaceless = "EGL surfaceless";
+// What GLVND's libEGL says, in effect, when no vendor library (driver) is installed.
+const char* const kNoPlatform = "EGL: no EGL driver found (the EGL library offers no platforms)";
 
 EGLDisplay device_display(const EglDevice& d) {
   return open_display(EGL_PLATFORM_DEVICE_EXT, d.handle, d.source);
@@ -202,9 +204,7 @@ std::string list_devices(const std::vector<EglDevice>& devices) {
 }  // namespace
 
 std::unique_ptr<GlContext> detail::make_egl_context(std::optional<int> device) {
-  if (!client_api().get_platform_display) {
-    throw std::runtime_error("EGL: the EGL library lacks EGL_EXT_platform_base");
-  }
+  if (!client_api().get_platform_display) throw std::runtime_error(kNoPlatform);
   const std::vector<EglDevice> devices = egl_devices();
   if (device) {
     if (*device < 0 || *device >= static_cast<int>(devices.size())) {
@@ -248,7 +248,10 @@ std::vector<GlProbe> detail::probe_egl() {
     }
     out.push_back(std::move(p));
   };
-  if (!client_api().get_platform_display) return out;
+  if (!client_api().get_platform_display) {
+    out.push_back({"EGL", "egl", -1, false, {}, {}, {}, false, kNoPlatform});
+    return out;
+  }
   const std::vector<EglDevice> devices = egl_devices();
   for (std::size_t i = 0; i < devices.size(); ++i) {
     const EglDevice& d = devices[i];
