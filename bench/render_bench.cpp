@@ -56,7 +56,7 @@ void BM_OnlyNoAoImage(benchmark::State& state) {  // saving: AO and blur not run
 
 void BM_MssaoTwoLevels(benchmark::State& state) {  // saving: levels 2..4 weigh 0
   rd::RenderSettings s = settings(rd::Technique::kMssao, 640, 360);
-  s.params.level_weights = {1.0f, 0.5f, 0, 0, 0};
+  s.params.mssao.level_weights = {1.0f, 0.5f, 0, 0, 0};
   run(state, village(), village().views[0], s);
 }
 

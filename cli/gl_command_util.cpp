@@ -9,6 +9,7 @@
 
 #include "cli/sibling_library.hpp"
 #include "compare/image_io.hpp"
+#include "renderer/params.hpp"
 
 namespace aosuite::cli {
 
@@ -36,15 +37,14 @@ void add_case_options(CLI::App* cmd, CaseOptions& o) {
                   "built-in scene name or scene file (.toml); `aosuite scenes` lists them")
       ->capture_default_str();
   cmd->add_option("--view", o.view, "view name or index (default: the first)");
-  cmd->add_option("--technique", o.technique, "alchemy|sao|mssao|ue4|pmi")->capture_default_str();
+  cmd->add_option("--technique", o.technique, rd::technique_names("|"))->capture_default_str();
   cmd->add_option("--width", o.width)->capture_default_str();
   cmd->add_option("--height", o.height)->capture_default_str();
   cmd->add_option("--samples", o.samples, "samples per pixel (default: the technique's)");
   cmd->add_option("--radius", o.radius, "radius in scene units");
-  cmd->add_option("--param", o.params,
-                  fmt::format("KEY=VALUE, repeatable; keys: {} (blur: none|gaussian|bilateral; "
-                              "level_weights: five comma-separated MSSAO intensities)",
-                              fmt::join(rd::param_names(), ", ")));
+  std::string keys;
+  for (const rd::ParamSpec& p : rd::param_specs()) keys += fmt::format("\n  {}: {}", p.key, p.doc);
+  cmd->add_option("--param", o.params, "KEY=VALUE, repeatable; keys:" + keys);
 }
 
 rd::RenderSettings case_settings(const CaseOptions& o) {
@@ -80,6 +80,15 @@ void write_exr(const fs::path& path, const cv::Mat& image) {
     throw FileError(fmt::format("{}: cannot write EXR: {}", path.string(), err));
   }
   fs::rename(tmp, path);
+}
+
+nlohmann::ordered_json params_json(rd::Technique technique, const rd::AoParams& p) {
+  nlohmann::ordered_json j = nlohmann::ordered_json::object();
+  for (const rd::ParamSpec& spec : rd::param_specs()) {
+    if (!rd::applies(spec, technique)) continue;
+    std::visit([&](const auto& v) { j[std::string(spec.key)] = v; }, rd::param_value(spec, p));
+  }
+  return j;
 }
 
 double median(std::vector<double> v) {

@@ -41,6 +41,9 @@ void write_exr(const std::filesystem::path& path, const cv::Mat& image);
 
 double median(std::vector<double> v);
 
+// The parameters `technique` reads, with their types (parameter table order).
+nlohmann::ordered_json params_json(renderer::Technique technique, const renderer::AoParams& p);
+
 nlohmann::ordered_json to_json(const reference::ErrorStats& s);
 nlohmann::ordered_json to_json(const reference::ErrorReport& r);
 

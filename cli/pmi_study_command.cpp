@@ -204,7 +204,7 @@ int run_study(const StudyArgs& a) {
     rs.width = a.width, rs.height = a.height, rs.technique = t;
     rs.params = rd::default_params(t);
     if (t == rd::Technique::kPmi) {
-      rs.params.viewpoints = chosen.viewpoints, rs.params.pmi_resolution = chosen.resolution;
+      rs.params.pmi.viewpoints = chosen.viewpoints, rs.params.pmi.resolution = chosen.resolution;
       rs.params.blur = rd::Blur::kNone;
     }
     const bool is_traced = std::string_view(name) == "raytraced";

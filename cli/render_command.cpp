@@ -52,21 +52,7 @@ int run_render(const RenderArgs& a) {
   nlohmann::ordered_json j;
   j["scene"] = scene.name, j["view"] = view.name, j["technique"] = a.c.technique;
   j["width"] = s.width, j["height"] = s.height;
-  j["params"] = {{"samples", s.params.samples},
-                 {"radius", s.params.radius},
-                 {"bias", s.params.bias},
-                 {"intensity", s.params.intensity},
-                 {"contrast", s.params.contrast},
-                 {"blur", rd::blur_name(s.params.blur)},
-                 {"level_weights", s.params.level_weights}};
-  if (s.technique == rd::Technique::kMssao) {
-    j["params"]["max_pixel_radius"] = s.params.max_pixel_radius;
-  }
-  if (s.technique == rd::Technique::kPmi) {
-    j["params"]["viewpoints"] = s.params.viewpoints;
-    j["params"]["pmi_resolution"] = s.params.pmi_resolution;
-    j["params"]["importance_best"] = s.params.importance_best;
-  }
+  j["params"] = params_json(s.technique, s.params);
   j["gl"] = renderer.gl_description();
   j["gl_device"] = renderer.gl_source();
   j["runs"] = a.runs;

@@ -18,6 +18,7 @@
 #include "cli/sweep_plot.hpp"
 #include "compare/image_io.hpp"
 #include "reference/reference_cache.hpp"
+#include "renderer/params.hpp"
 #include "renderer/renderer.hpp"
 #include "renderer/scene_file.hpp"
 

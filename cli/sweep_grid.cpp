@@ -4,6 +4,7 @@
 #include <toml++/toml.h>
 
 #include "compare/image_io.hpp"
+#include "renderer/params.hpp"
 #include "renderer/toml_reader.hpp"
 
 namespace aosuite::cli {

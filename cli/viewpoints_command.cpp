@@ -123,8 +123,7 @@ int run_viewpoints(const ViewpointsArgs& a) {
   rd::RenderSettings rs;
   rs.width = a.width, rs.height = a.height, rs.technique = rd::Technique::kPmi;
   rs.params = rd::default_params(rs.technique);
-  rs.params.viewpoints = a.viewpoints, rs.params.pmi_resolution = a.resolution;
-  rs.params.importance_best = a.importance_best;
+  rs.params.pmi = {a.viewpoints, a.resolution, a.importance_best};
   rs.outputs = rd::parse_outputs("with_ao");
   const auto by_pmi = std::minmax_element(c.view_pmi.begin(), c.view_pmi.end());
   const auto by_vmi = std::minmax_element(c.vmi.begin(), c.vmi.end());

@@ -6,6 +6,7 @@
 #include <span>
 
 #include "renderer/content_hash.hpp"
+#include "renderer/params.hpp"
 #include "renderer/shader_library.hpp"
 
 namespace aosuite::harness {
@@ -43,11 +44,10 @@ std::string input_hash(const Case& c, const std::string& gl_description) {
   for (const renderer::View& v : c.scene->views) {
     h.add(v.name).add(v.eye).add(v.target).add(v.up).add(v.fovy_degrees).add(v.near);
   }
-  const renderer::AoParams& p = c.params;
   h.add(c.view).add(c.technique).add(c.width).add(c.height);
-  h.add(p.samples).add(p.radius).add(p.bias).add(p.intensity).add(p.contrast).add(p.blur);
-  h.add(p.level_weights).add(p.max_pixel_radius);
-  h.add(p.viewpoints).add(p.pmi_resolution).add(p.importance_best);
+  // Every parameter, whether this technique reads it or not: a stale render is never reused.
+  for (const renderer::ParamSpec& spec : renderer::param_specs())
+    h.add(spec.key).add(renderer::param_text(spec, c.params));
   return h.hex();
 }
 

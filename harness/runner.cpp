@@ -14,6 +14,7 @@
 #include "harness/case_hash.hpp"
 #include "harness/escape.hpp"
 #include "harness/goldens.hpp"
+#include "renderer/params.hpp"
 #include "renderer/renderer.hpp"
 
 namespace aosuite::harness {
@@ -161,21 +162,9 @@ CaseResult skeleton(const Case& c) {
   r.id = c.id, r.scene = c.scene->name, r.view = c.view;
   r.technique = std::string(rd::technique_name(c.technique));
   r.width = c.width, r.height = c.height, r.tolerance = c.tolerance;
-  const rd::AoParams& p = c.params;
-  r.params = {{"samples", std::to_string(p.samples)},
-              {"radius", fmt::format("{}", p.radius)},
-              {"bias", fmt::format("{}", p.bias)},
-              {"intensity", fmt::format("{}", p.intensity)},
-              {"contrast", fmt::format("{}", p.contrast)},
-              {"blur", std::string(rd::blur_name(p.blur))},
-              {"level_weights", fmt::format("{}", fmt::join(p.level_weights, ","))}};
-  if (c.technique == rd::Technique::kMssao) {
-    r.params["max_pixel_radius"] = fmt::format("{}", p.max_pixel_radius);
-  }
-  if (c.technique == rd::Technique::kPmi) {
-    r.params["viewpoints"] = std::to_string(p.viewpoints);
-    r.params["pmi_resolution"] = std::to_string(p.pmi_resolution);
-    r.params["importance_best"] = std::to_string(p.importance_best);
+  for (const rd::ParamSpec& spec : rd::param_specs()) {
+    if (rd::applies(spec, c.technique))
+      r.params[std::string(spec.key)] = rd::param_text(spec, c.params);
   }
   r.files = {{"no_ao", c.id + "/no_ao.png"},
              {"with_ao", c.id + "/with_ao.png"},

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "harness/escape.hpp"
+#include "renderer/params.hpp"
 #include "renderer/scene_file.hpp"
 #include "renderer/toml_reader.hpp"
 

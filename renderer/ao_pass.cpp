@@ -5,9 +5,6 @@
 
 namespace aosuite::renderer {
 
-std::unique_ptr<AoPass> make_sao_pass();    // sao_pass.cpp
-std::unique_ptr<AoPass> make_mssao_pass();  // mssao_pass.cpp
-
 namespace {
 
 // A technique that is one full-screen draw over the G-buffer's depth and normals:
@@ -35,20 +32,18 @@ class GBufferAoPass final : public AoPass {
 
 }  // namespace
 
+std::unique_ptr<AoPass> make_alchemy_pass() {
+  return std::make_unique<GBufferAoPass>("alchemy.frag");
+}
+
+std::unique_ptr<AoPass> make_ue4_pass() { return std::make_unique<GBufferAoPass>("ue4.frag"); }
+
 std::unique_ptr<AoPass> make_ao_pass(Technique technique) {
-  switch (technique) {
-    case Technique::kAlchemy:
-      return std::make_unique<GBufferAoPass>("alchemy.frag");
-    case Technique::kSao:
-      return make_sao_pass();
-    case Technique::kUe4:
-      return std::make_unique<GBufferAoPass>("ue4.frag");
-    case Technique::kMssao:
-      return make_mssao_pass();
-    case Technique::kPmi:  // object space: the Renderer runs PmiPass over the scene instead
-      break;
+  const TechniqueInfo& info = technique_info(technique);
+  if (!info.make_pass) {
+    throw std::invalid_argument(std::string(info.name) + " is not a screen-space technique");
   }
-  throw std::invalid_argument("unknown technique");
+  return info.make_pass();
 }
 
 int spiral_turns(int samples) {

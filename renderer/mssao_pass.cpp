@@ -30,7 +30,7 @@ class MssaoPass final : public AoPass {
     int top = -1;  // the coarsest level that contributes
     int contributing = 0;
     for (int l = 0; l < kLevels; ++l) {
-      if (params.level_weights[static_cast<std::size_t>(l)] > 0) top = l, ++contributing;
+      if (params.mssao.level_weights[static_cast<std::size_t>(l)] > 0) top = l, ++contributing;
     }
     std::vector<PassTimer> times;
     if (top < 0) {  // every weight 0: no occlusion at all
@@ -57,14 +57,16 @@ class MssaoPass final : public AoPass {
       PassTimer timer("mssao_level" + std::to_string(l));
       AoParams level_params = params;
       // `intensity` scales every level, as it scales the other techniques' AO.
-      level_params.intensity = params.intensity * params.level_weights[static_cast<std::size_t>(l)];
+      level_params.intensity =
+          params.intensity * params.mssao.level_weights[static_cast<std::size_t>(l)];
       // A coarse texel's position is off by up to its footprint, which grows 2x per level;
       // the depth-proportional bias grows with it, or flat ground self-occludes at level 4.
       level_params.bias = params.bias * static_cast<float>(1 << l);
       Camera level_camera = camera;
       level_camera.proj_scale = camera.proj_scale / static_cast<float>(1 << l);
       set_ao_uniforms(p, level_params, level_camera);
-      glProgramUniform1f(p, glGetUniformLocation(p, "u_max_pixel_radius"), params.max_pixel_radius);
+      glProgramUniform1f(p, glGetUniformLocation(p, "u_max_pixel_radius"),
+                         params.mssao.max_pixel_radius);
       glProgramUniform1i(p, glGetUniformLocation(p, "u_has_coarse"), l < top);
       glProgramUniform1i(p, glGetUniformLocation(p, "u_local"), level_params.intensity > 0);
       glProgramUniform1i(p, glGetUniformLocation(p, "u_finest"), l == 0);

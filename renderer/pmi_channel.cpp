@@ -65,10 +65,10 @@ float viewpoint_far(const PmiObject& o, glm::vec3 eye) {
 
 PmiSettings pmi_settings(const AoParams& params) {
   PmiSettings s;
-  s.viewpoints = params.viewpoints;
-  s.width = params.pmi_resolution;
-  s.height = std::max(1, params.pmi_resolution * 3 / 4);
-  s.importance_best = params.importance_best;
+  s.viewpoints = params.pmi.viewpoints;
+  s.width = params.pmi.resolution;
+  s.height = std::max(1, params.pmi.resolution * 3 / 4);
+  s.importance_best = params.pmi.importance_best;
   return s;
 }
 

@@ -10,6 +10,7 @@
 #include "renderer/blur_pass.hpp"
 #include "renderer/gbuffer_pass.hpp"
 #include "renderer/gl/gl_context.hpp"
+#include "renderer/params.hpp"
 #include "renderer/pmi_cache.hpp"
 #include "renderer/pmi_pass.hpp"
 #include "renderer/viewpoint_sphere.hpp"
@@ -96,22 +97,8 @@ void validate(const View& view, const RenderSettings& s) {
     fail("resolution " + std::to_string(s.width) + "x" + std::to_string(s.height) +
          " is outside 1..16384 per side");
   }
-  const AoParams& p = s.params;
-  if (p.samples < 1 || p.samples > 1024) fail("samples must be 1..1024");
-  if (!(p.radius > 0) || !std::isfinite(p.radius)) fail("radius must be a positive number");
-  if (!std::isfinite(p.bias) || !std::isfinite(p.intensity) || !(p.contrast > 0) ||
-      !std::isfinite(p.contrast)) {
-    fail("bias, intensity and contrast must be finite (contrast > 0)");
-  }
-  if (s.technique == Technique::kPmi) make_icosphere(p.viewpoints);  // throws for a bad count
-  if (p.pmi_resolution < 16 || p.pmi_resolution > 8192) fail("pmi_resolution must be 16..8192");
-  if (p.importance_best < 0 || p.importance_best > p.viewpoints)
-    fail("importance_best must be 0..viewpoints");
-  if (!(p.max_pixel_radius >= 1 && p.max_pixel_radius <= 1024))
-    fail("max_pixel_radius must be 1..1024 pixels");
-  for (float w : p.level_weights) {
-    if (!(w >= 0) || !std::isfinite(w)) fail("level weights must be finite and >= 0");
-  }
+  check_params(s.params);
+  if (s.technique == Technique::kPmi) make_icosphere(s.params.pmi.viewpoints);  // a bad count
   if (!(view.near > 0) || !std::isfinite(view.near))
     fail("view '" + view.name + "': near must be > 0");
   if (!(view.fovy_degrees > 0 && view.fovy_degrees < 180))

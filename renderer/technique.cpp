@@ -1,37 +1,85 @@
 #include "renderer/technique.hpp"
 
-#include <charconv>
-#include <cmath>
 #include <stdexcept>
 #include <string>
 
+#include "renderer/ao_pass.hpp"
+
 namespace aosuite::renderer {
 
-Technique parse_technique(std::string_view name) {
-  if (name == "alchemy") return Technique::kAlchemy;
-  if (name == "sao") return Technique::kSao;
-  if (name == "mssao") return Technique::kMssao;
-  if (name == "ue4") return Technique::kUe4;
-  if (name == "pmi") return Technique::kPmi;
-  throw std::invalid_argument("unknown technique '" + std::string(name) +
-                              "' (expected alchemy, sao, mssao, ue4 or pmi)");
+// Each screen-space technique's pass, in its own file.
+std::unique_ptr<AoPass> make_alchemy_pass();  // ao_pass.cpp
+std::unique_ptr<AoPass> make_ue4_pass();      // ao_pass.cpp
+std::unique_ptr<AoPass> make_sao_pass();      // sao_pass.cpp
+std::unique_ptr<AoPass> make_mssao_pass();    // mssao_pass.cpp
+
+namespace {
+
+// The registry. Defaults are the thesis's (chapter 5) and the papers': Alchemy r=1 s=16;
+// SAO r=10 s=8; UE4 r=0.05 s=8; MSSAO r=2 s=16 with level weights 1.0/0.5/0.3/0.3/0.3; PMI
+// the paper's recommended 162 viewpoints at 1280x960.
+constexpr TechniqueInfo kTechniques[] = {
+    {Technique::kAlchemy, "alchemy", "Alchemy AO (McGuire et al. 2011)", Space::kScreen,
+     [] {
+       AoParams p;
+       p.samples = 16, p.radius = 1, p.bias = 0.002f;  // beta: Unity URP's 0.002 per unit depth
+       return p;
+     },
+     make_alchemy_pass},
+    {Technique::kSao, "sao", "Scalable AO (McGuire et al. 2012)", Space::kScreen,
+     [] {
+       AoParams p;
+       p.samples = 8, p.radius = 10, p.bias = 0.012f;  // SAO::Settings bias, scene units
+       return p;
+     },
+     make_sao_pass},
+    {Technique::kMssao, "mssao", "Multi-Scale AO (Hoang & Low 2012)", Space::kScreen,
+     [] {
+       AoParams p;
+       p.samples = 16, p.radius = 2, p.bias = 0.002f;
+       return p;
+     },
+     make_mssao_pass},
+    {Technique::kUe4, "ue4", "UE4 AO (Mittring 2012)", Space::kScreen,
+     [] {
+       AoParams p;
+       // Published Intensity 0.5 and Power 2.0; bias is a minimum horizon sine.
+       p.samples = 8, p.radius = 0.05f, p.bias = 0.03f, p.intensity = 0.5f, p.contrast = 2;
+       return p;
+     },
+     make_ue4_pass},
+    {Technique::kPmi, "pmi", "viewpoint-based AO, polygonal mutual information (Gonzalez 2008)",
+     Space::kObject, [] { return AoParams{}; }, nullptr},
+};
+
+}  // namespace
+
+std::span<const TechniqueInfo> techniques() { return kTechniques; }
+
+const TechniqueInfo& technique_info(Technique t) {
+  for (const TechniqueInfo& info : kTechniques) {
+    if (info.id == t) return info;
+  }
+  throw std::invalid_argument("unregistered technique");
 }
 
-std::string_view technique_name(Technique t) {
-  switch (t) {
-    case Technique::kAlchemy:
-      return "alchemy";
-    case Technique::kSao:
-      return "sao";
-    case Technique::kMssao:
-      return "mssao";
-    case Technique::kUe4:
-      return "ue4";
-    case Technique::kPmi:
-      return "pmi";
+std::string technique_names(std::string_view separator) {
+  std::string out;
+  for (const TechniqueInfo& info : kTechniques) {
+    out += (out.empty() ? "" : std::string(separator)) + std::string(info.name);
   }
-  return "alchemy";
+  return out;
 }
+
+Technique parse_technique(std::string_view name) {
+  for (const TechniqueInfo& info : kTechniques) {
+    if (info.name == name) return info.id;
+  }
+  throw std::invalid_argument("unknown technique '" + std::string(name) + "' (expected " +
+                              technique_names(", ") + ")");
+}
+
+std::string_view technique_name(Technique t) { return technique_info(t).name; }
 
 Blur parse_blur(std::string_view name) {
   if (name == "none") return Blur::kNone;
@@ -51,97 +99,6 @@ std::string_view blur_name(Blur b) {
       return "bilateral";
   }
   return "none";
-}
-
-AoParams default_params(Technique t) {
-  AoParams p;
-  switch (t) {
-    case Technique::kAlchemy:
-      p.samples = 16, p.radius = 1, p.bias = 0.002f;  // beta: Unity URP's 0.002 per unit depth
-      break;
-    case Technique::kSao:
-      p.samples = 8, p.radius = 10, p.bias = 0.012f;  // SAO::Settings bias, scene units
-      break;
-    case Technique::kMssao:
-      p.samples = 16, p.radius = 2, p.bias = 0.002f;
-      break;
-    case Technique::kUe4:
-      // Published Intensity 0.5 and Power 2.0; bias is a minimum horizon sine.
-      p.samples = 8, p.radius = 0.05f, p.bias = 0.03f, p.intensity = 0.5f, p.contrast = 2;
-      break;
-    case Technique::kPmi:  // the struct's viewpoints and pmi_resolution are the paper's
-      break;
-  }
-  return p;
-}
-
-namespace {
-
-[[noreturn]] void bad_value(std::string_view key, std::string_view value, const char* why) {
-  throw std::invalid_argument("parameter " + std::string(key) + "=" + std::string(value) + ": " +
-                              why);
-}
-
-template <typename T>
-T parse_number(std::string_view key, std::string_view value) {
-  T out{};
-  const auto [end, ec] = std::from_chars(value.data(), value.data() + value.size(), out);
-  if (ec != std::errc() || end != value.data() + value.size())
-    bad_value(key, value, "not a number");
-  if constexpr (std::is_floating_point_v<T>) {
-    if (!std::isfinite(out)) bad_value(key, value, "not finite");
-  }
-  return out;
-}
-
-}  // namespace
-
-std::array<std::string_view, 11> param_names() {
-  return {"samples",    "radius",         "bias",           "intensity",
-          "contrast",   "blur",           "level_weights",  "max_pixel_radius",
-          "viewpoints", "pmi_resolution", "importance_best"};
-}
-
-void set_param(AoParams& p, std::string_view key, std::string_view value) {
-  if (key == "samples") {
-    p.samples = parse_number<int>(key, value);
-  } else if (key == "radius") {
-    p.radius = parse_number<float>(key, value);
-  } else if (key == "bias") {
-    p.bias = parse_number<float>(key, value);
-  } else if (key == "intensity") {
-    p.intensity = parse_number<float>(key, value);
-  } else if (key == "contrast") {
-    p.contrast = parse_number<float>(key, value);
-  } else if (key == "max_pixel_radius") {
-    p.max_pixel_radius = parse_number<float>(key, value);
-  } else if (key == "viewpoints") {
-    p.viewpoints = parse_number<int>(key, value);
-  } else if (key == "pmi_resolution") {
-    p.pmi_resolution = parse_number<int>(key, value);
-  } else if (key == "importance_best") {
-    p.importance_best = parse_number<int>(key, value);
-  } else if (key == "blur") {
-    p.blur = parse_blur(value);
-  } else if (key == "level_weights") {
-    std::size_t level = 0;
-    for (std::string_view rest = value; level < p.level_weights.size(); ++level) {
-      const std::size_t comma = rest.find(',');
-      p.level_weights[level] = parse_number<float>(key, rest.substr(0, comma));
-      if (comma == std::string_view::npos) {
-        rest = {};
-        break;
-      }
-      rest.remove_prefix(comma + 1);
-    }
-    if (level + 1 != p.level_weights.size())
-      bad_value(key, value, "needs five comma-separated values");
-  } else {
-    std::string names;
-    for (std::string_view n : param_names()) names += (names.empty() ? "" : ", ") + std::string(n);
-    throw std::invalid_argument("unknown parameter '" + std::string(key) + "' (known: " + names +
-                                ")");
-  }
 }
 
 }  // namespace aosuite::renderer

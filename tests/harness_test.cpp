@@ -6,6 +6,7 @@
 #include <fstream>
 
 #include "compare/opencv.hpp"
+#include "harness/case_hash.hpp"
 #include "harness/escape.hpp"
 #include "harness/goldens.hpp"
 #include "harness/html_report.hpp"
@@ -14,6 +15,8 @@
 #include "harness/runner.hpp"
 #include "harness/suite.hpp"
 #include "png_fixture.hpp"
+#include "renderer/params.hpp"
+#include "renderer/scene.hpp"
 
 namespace aosuite::harness {
 namespace {
@@ -75,7 +78,7 @@ tolerance = { max_channel_delta = 9 }
   EXPECT_EQ(v.id, "village-street-mssao-80x36-wide");
   EXPECT_EQ(v.params.samples, 4);
   EXPECT_EQ(v.params.radius, 3);
-  EXPECT_EQ(v.params.level_weights[1], 0);
+  EXPECT_EQ(v.params.mssao.level_weights[1], 0);
   EXPECT_EQ(v.params.blur, renderer::Blur::kNone);
   EXPECT_EQ(v.tolerance.mode, resemble::Mode::kNothing);  // defaults kept where not overridden
   EXPECT_EQ(v.tolerance.max_mismatch_percent, 1.5);
@@ -435,6 +438,25 @@ TEST(Shards, TheExactFilterMatchesWholeIdsOnly) {
   s.goldens = "g", s.goldens_given = true;
   EXPECT_EQ(bless_command(bless_prefix(s), {"a-b", "c.d"}),
             R"(aosuite bless 'my suites/it'\''s.toml' --goldens g --filter '^(a-b|c\.d)$')");
+}
+
+// A parameter left out of the input hash would silently reuse stale renders: every
+// parameter of the table, set to its sample value, must change the hash, for every technique.
+TEST(CaseHash, EveryParameterChangesTheInputHash) {
+  Case c;
+  c.scene = std::make_shared<const renderer::Scene>(renderer::builtin_scene("plane"));
+  c.view = "above", c.width = 8, c.height = 8;
+  for (const renderer::TechniqueInfo& t : renderer::techniques()) {
+    c.technique = t.id, c.params = t.defaults();
+    const std::string base = input_hash(c, "gl");
+    for (const renderer::ParamSpec& spec : renderer::param_specs()) {
+      Case changed = c;
+      renderer::set_param(changed.params, spec.key, spec.sample);
+      EXPECT_NE(renderer::param_text(spec, changed.params), renderer::param_text(spec, c.params))
+          << spec.key << ": its sample equals " << t.name << "'s default";
+      EXPECT_NE(input_hash(changed, "gl"), base) << t.name << " " << spec.key;
+    }
+  }
 }
 
 TEST(Results, RoundTripThroughJson) {

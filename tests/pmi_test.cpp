@@ -7,6 +7,7 @@
 #include <numeric>
 #include <random>
 
+#include "renderer/params.hpp"
 #include "renderer/pmi_channel.hpp"
 #include "renderer/renderer.hpp"
 #include "renderer/scene.hpp"
@@ -225,7 +226,7 @@ TEST(Pmi, RendersThroughThePipelineOnceForAllViews) {
   RenderSettings rs;
   rs.width = 128, rs.height = 96, rs.technique = Technique::kPmi;
   rs.params = default_params(Technique::kPmi);
-  rs.params.viewpoints = 42, rs.params.pmi_resolution = 160, rs.params.blur = Blur::kNone;
+  rs.params.pmi.viewpoints = 42, rs.params.pmi.resolution = 160, rs.params.blur = Blur::kNone;
   View top = s.views[0];
   top.eye = {0.1f, 6, 0.1f}, top.target = {0, 0, 0};
   const Images a = shared_renderer().render(s, s.views[0], rs);
@@ -276,7 +277,8 @@ TEST(Pmi, ParametersAreValidated) {
   const Scene n = notch_scene();
   EXPECT_THROW(shared_renderer().render(n, n.views[0], s), std::invalid_argument);
   set_param(s.params, "viewpoints", "12");
-  set_param(s.params, "pmi_resolution", "4");
+  EXPECT_THROW(set_param(s.params, "pmi_resolution", "4"), std::invalid_argument);
+  s.params.pmi.resolution = 4;  // set in code, past set_param: the renderer still refuses it
   EXPECT_THROW(shared_renderer().render(n, n.views[0], s), std::invalid_argument);
   EXPECT_EQ(parse_technique("pmi"), Technique::kPmi);
   EXPECT_EQ(technique_name(Technique::kPmi), "pmi");

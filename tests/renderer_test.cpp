@@ -9,13 +9,21 @@
 #include <cmath>
 #include <thread>
 
+#include "renderer/params.hpp"
 #include "renderer/scene.hpp"
 
 namespace aosuite::renderer {
 namespace {
 
 constexpr int kW = 128, kH = 96;
-const Technique kAll[] = {Technique::kAlchemy, Technique::kSao, Technique::kMssao, Technique::kUe4};
+// Every registered screen-space technique: a new one is tested here with no edit.
+const std::vector<Technique> kAll = [] {
+  std::vector<Technique> out;
+  for (const TechniqueInfo& t : techniques()) {
+    if (t.space == Space::kScreen) out.push_back(t.id);
+  }
+  return out;
+}();
 
 Renderer& shared_renderer() {
   static Renderer r;
@@ -225,7 +233,7 @@ TEST(Renderer, SkipsWorkNobodyAskedFor) {
   EXPECT_FALSE(has_pass(raw, "blend"));
 
   RenderSettings m = settings(Technique::kMssao, 2);
-  m.params.level_weights = {1.0f, 0.5f, 0, 0, 0};
+  m.params.mssao.level_weights = {1.0f, 0.5f, 0, 0, 0};
   const Images two = render(village, 0, m);
   EXPECT_TRUE(has_pass(two, "mssao_level1"));
   EXPECT_FALSE(has_pass(two, "mssao_level2"));
@@ -272,7 +280,7 @@ TEST(Renderer, RejectsAbsurdSettings) {
   s = settings(Technique::kAlchemy, std::nanf(""));
   EXPECT_THROW(render(plane, 0, s), std::invalid_argument);
   s = settings(Technique::kMssao, 1);
-  s.params.max_pixel_radius = 0;
+  s.params.mssao.max_pixel_radius = 0;
   EXPECT_THROW(render(plane, 0, s), std::invalid_argument);
   EXPECT_THROW(set_param(s.params, "max_pixel_radius", "inf"), std::invalid_argument);
   Scene bad = plane;
