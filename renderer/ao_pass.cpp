@@ -7,17 +7,18 @@ namespace aosuite::renderer {
 
 namespace {
 
-// A technique that is one full-screen draw over the G-buffer's depth and normals:
-// Alchemy AO (alchemy.frag) and UE4 AO (ue4.frag); each shader's header has the estimator.
+// A technique that is one full-screen draw over the G-buffer's depth and normals (Alchemy,
+// UE4, GTAO); each shader's header has the estimator.
 class GBufferAoPass final : public AoPass {
  public:
-  explicit GBufferAoPass(const char* fragment)
-      : program_(make_program({"fullscreen.vert", fragment})) {}
+  GBufferAoPass(const char* fragment, OwnUniforms own_uniforms)
+      : program_(make_program({"fullscreen.vert", fragment})), own_uniforms_(own_uniforms) {}
   std::vector<PassTimer> run(const GBuffer& g, const Camera& camera, const AoParams& params,
                              GLuint out_fb) override {
     PassTimer timer("ao");
     const GLuint p = program_.get();
     set_ao_uniforms(p, params, camera);
+    if (own_uniforms_) own_uniforms_(p, params);
     bind_textures(p, {{"u_depth", g.depth.get()}, {"u_normal", g.normal.get()}});
     draw_geometry_pixels(out_fb, g.width, g.height);
     timer.stop();
@@ -28,15 +29,18 @@ class GBufferAoPass final : public AoPass {
 
  private:
   Program program_;
+  OwnUniforms own_uniforms_;
 };
 
 }  // namespace
 
-std::unique_ptr<AoPass> make_alchemy_pass() {
-  return std::make_unique<GBufferAoPass>("alchemy.frag");
+std::unique_ptr<AoPass> make_gbuffer_ao_pass(const char* fragment, OwnUniforms own_uniforms) {
+  return std::make_unique<GBufferAoPass>(fragment, own_uniforms);
 }
 
-std::unique_ptr<AoPass> make_ue4_pass() { return std::make_unique<GBufferAoPass>("ue4.frag"); }
+std::unique_ptr<AoPass> make_alchemy_pass() { return make_gbuffer_ao_pass("alchemy.frag"); }
+
+std::unique_ptr<AoPass> make_ue4_pass() { return make_gbuffer_ao_pass("ue4.frag"); }
 
 std::unique_ptr<AoPass> make_ao_pass(Technique technique) {
   const TechniqueInfo& info = technique_info(technique);

@@ -20,6 +20,13 @@ class AoPass {
 
 std::unique_ptr<AoPass> make_ao_pass(Technique technique);
 
+// A technique that is one full-screen draw over the G-buffer's depth and normals with
+// `fragment` (a file in renderer/shaders/): the shared uniforms (set_ao_uniforms), then the
+// technique's own, if any.
+using OwnUniforms = void (*)(GLuint program, const AoParams& params);
+std::unique_ptr<AoPass> make_gbuffer_ao_pass(const char* fragment,
+                                             OwnUniforms own_uniforms = nullptr);
+
 // SAO's discrepancy-minimising spiral turns for s samples (G3D's table), 7 beyond it.
 int spiral_turns(int samples);
 

@@ -11,22 +11,24 @@ namespace aosuite::renderer {
 namespace {
 
 constexpr unsigned bit(Technique t) { return 1u << static_cast<unsigned>(t); }
-constexpr unsigned kScreenSpace =
+// The estimators that take s taps within a radius, with a bias.
+constexpr unsigned kTapped =
     bit(Technique::kAlchemy) | bit(Technique::kSao) | bit(Technique::kMssao) | bit(Technique::kUe4);
+constexpr unsigned kScreenSpace = kTapped | bit(Technique::kGtao);
 constexpr unsigned kAll = kScreenSpace | bit(Technique::kPmi);
 constexpr double kBig = 1e30;
 
 // The table. Ranges are what the passes handle without NaN or a runaway cost.
 const ParamSpec kParams[] = {
-    {"samples", "taps per pixel", kScreenSpace, +[](AoParams& p) -> int& { return p.samples; }, 1,
-     1024, false, "7"},
+    {"samples", "taps per pixel", kTapped, +[](AoParams& p) -> int& { return p.samples; }, 1, 1024,
+     false, "7"},
     {"radius", "world-space radius, scene units", kScreenSpace,
      +[](AoParams& p) -> float& { return p.radius; }, 0, kBig, true, "0.37"},
-    {"bias", "depth or angle bias (each shader's header says which)", kScreenSpace,
+    {"bias", "depth or angle bias (each shader's header says which)", kTapped,
      +[](AoParams& p) -> float& { return p.bias; }, -kBig, kBig, false, "0.0123"},
     {"intensity", "sigma: scales the occlusion", kScreenSpace,
      +[](AoParams& p) -> float& { return p.intensity; }, -kBig, kBig, false, "0.77"},
-    {"contrast", "k (Alchemy, SAO) or power (UE4)", kScreenSpace,
+    {"contrast", "k (Alchemy, SAO), power (UE4) or final power (GTAO)", kScreenSpace,
      +[](AoParams& p) -> float& { return p.contrast; }, 0, kBig, true, "1.3"},
     {"blur", "none|gaussian|bilateral, after the AO pass", kAll,
      +[](AoParams& p) -> Blur& { return p.blur; }, 0, 0, false, "gaussian"},
@@ -43,6 +45,15 @@ const ParamSpec kParams[] = {
     {"importance_best", "PMI: the k best views share 99 % of p(V); 0 = projected area",
      bit(Technique::kPmi), +[](AoParams& p) -> int& { return p.pmi.importance_best; }, 0, 2562,
      false, "3"},
+    {"slices", "GTAO slices per pixel", bit(Technique::kGtao),
+     +[](AoParams& p) -> int& { return p.gtao.slices; }, 1, 64, false, "2"},
+    {"steps", "GTAO steps per side of a slice", bit(Technique::kGtao),
+     +[](AoParams& p) -> int& { return p.gtao.steps; }, 1, 64, false, "5"},
+    {"falloff_range", "GTAO: share of the radius over which occluders fade out",
+     bit(Technique::kGtao), +[](AoParams& p) -> float& { return p.gtao.falloff_range; }, 0, 1, true,
+     "0.4"},
+    {"thin_occluder", "GTAO: thin-occluder compensation (0 = off)", bit(Technique::kGtao),
+     +[](AoParams& p) -> float& { return p.gtao.thin_occluder; }, 0, 0.7, false, "0.3"},
 };
 
 [[noreturn]] void bad_value(std::string_view key, std::string_view value, const char* why) {

@@ -12,6 +12,7 @@ std::unique_ptr<AoPass> make_alchemy_pass();  // ao_pass.cpp
 std::unique_ptr<AoPass> make_ue4_pass();      // ao_pass.cpp
 std::unique_ptr<AoPass> make_sao_pass();      // sao_pass.cpp
 std::unique_ptr<AoPass> make_mssao_pass();    // mssao_pass.cpp
+std::unique_ptr<AoPass> make_gtao_pass();     // gtao_pass.cpp
 
 namespace {
 
@@ -48,6 +49,15 @@ constexpr TechniqueInfo kTechniques[] = {
        return p;
      },
      make_ue4_pass},
+    {Technique::kGtao, "gtao", "Ground-Truth AO (Jimenez et al. 2016), XeGTAO's High preset",
+     Space::kScreen,
+     [] {
+       AoParams p;
+       // XeGTAO: radius 0.5 (times its 1.457 multiplier in the shader), FinalValuePower 2.2.
+       p.radius = 0.5f, p.contrast = 2.2f;
+       return p;
+     },
+     make_gtao_pass},
     {Technique::kPmi, "pmi", "viewpoint-based AO, polygonal mutual information (Gonzalez 2008)",
      Space::kObject, [] { return AoParams{}; }, nullptr},
 };

@@ -13,7 +13,7 @@ namespace aosuite::renderer {
 
 // kPmi: viewpoint-based AO (González, Sbert & Feixas 2008), per polygon in object space
 // (renderer/pmi_channel.hpp), not a screen-space estimator.
-enum class Technique { kAlchemy, kSao, kMssao, kUe4, kPmi };
+enum class Technique { kAlchemy, kSao, kMssao, kUe4, kPmi, kGtao };
 
 enum class Blur { kNone, kGaussian, kBilateral };
 Blur parse_blur(std::string_view name);  // none|gaussian|bilateral
@@ -40,15 +40,24 @@ struct PmiParams {
   int importance_best = 0;
 };
 
+// GTAO (Jimenez et al. 2016) with XeGTAO's "High" preset: 3 slices x 3 steps per side.
+struct GtaoParams {
+  int slices = 3;
+  int steps = 3;                 // per side of each slice
+  float falloff_range = 0.615f;  // share of the radius over which occluders fade out
+  float thin_occluder = 0;       // XeGTAO's ThinOccluderCompensation
+};
+
 struct AoParams {
   int samples = 16;
   float radius = 1;     // scene units
   float bias = 0;       // technique-specific units, see each shader's header
   float intensity = 1;  // sigma
-  float contrast = 1;   // k (Alchemy, SAO), power (UE4)
+  float contrast = 1;   // k (Alchemy, SAO), power (UE4), final power (GTAO)
   Blur blur = Blur::kBilateral;
   MssaoParams mssao;
   PmiParams pmi;
+  GtaoParams gtao;
 };
 
 class AoPass;
