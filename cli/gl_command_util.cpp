@@ -112,4 +112,16 @@ nlohmann::ordered_json to_json(const reference::ErrorReport& r) {
   return {{"all", to_json(r.all)}, {"edge", to_json(r.edge)}, {"interior", to_json(r.interior)}};
 }
 
+reference::ErrorStats error_stats_from_json(const nlohmann::json& j) {
+  reference::ErrorStats s;
+  s.pixels = j.at("pixels"), s.rmse = j.at("rmse"), s.mae = j.at("mae"), s.bias = j.at("bias");
+  s.psnr = j.at("psnr"), s.ssim = j.at("ssim"), s.noise_floor = j.at("noise_floor");
+  return s;
+}
+
+reference::ErrorReport error_report_from_json(const nlohmann::json& j) {
+  return {error_stats_from_json(j.at("all")), error_stats_from_json(j.at("edge")),
+          error_stats_from_json(j.at("interior"))};
+}
+
 }  // namespace aosuite::cli

@@ -46,5 +46,8 @@ nlohmann::ordered_json params_json(renderer::Technique technique, const renderer
 
 nlohmann::ordered_json to_json(const reference::ErrorStats& s);
 nlohmann::ordered_json to_json(const reference::ErrorReport& r);
+// Their inverses; nlohmann::json's errors for a missing or mistyped key.
+reference::ErrorStats error_stats_from_json(const nlohmann::json& j);
+reference::ErrorReport error_report_from_json(const nlohmann::json& j);
 
 }  // namespace aosuite::cli

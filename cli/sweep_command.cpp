@@ -10,13 +10,16 @@
 #include <filesystem>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <tuple>
 
 #include "cli/commands.hpp"
 #include "cli/gl_command_util.hpp"
 #include "cli/sweep_grid.hpp"
 #include "cli/sweep_plot.hpp"
+#include "cli/sweep_rows.hpp"
 #include "compare/image_io.hpp"
+#include "harness/runner.hpp"
 #include "reference/reference_cache.hpp"
 #include "renderer/params.hpp"
 #include "renderer/renderer.hpp"
@@ -28,18 +31,6 @@ namespace {
 namespace fs = std::filesystem;
 namespace rd = aosuite::renderer;
 namespace ref = aosuite::reference;
-
-struct Row {
-  std::string scene, view;
-  std::size_t view_index = 0;
-  rd::Technique technique{};
-  int width = 0, height = 0, samples = 0;
-  float radius = 0, intensity = 0;
-  double gl_ms = 0;  // the AO passes' GPU time (median of the runs)
-  ref::ErrorReport error;
-  ref::ErrorStats unbounded;
-  std::map<std::string, std::string> params;  // the grid's fixed parameters
-};
 
 // The grid's fixed parameters as text: "blur=none level_weights=1,0,0,0,0".
 std::string params_text(const Row& r) {
@@ -89,29 +80,41 @@ std::vector<const rd::View*> pick_views(const rd::Scene& scene,
   return views;
 }
 
-void sweep_view(rd::Renderer& renderer, const SweepGrid& g, const rd::Scene& scene,
-                ref::ReferenceCache& cache, const rd::View& view, std::size_t view_index, int w,
-                int h, std::vector<Row>& rows) {
+// Renders and measures the configurations of one view that `shard` takes; `index` counts
+// every configuration of the grid, taken or not, so each has the same number in every shard.
+// References are traced (or read from the cache) only for what the shard runs.
+void sweep_view(rd::Renderer& renderer, const SweepGrid& g, const harness::Selection& shard,
+                const rd::Scene& scene, ref::ReferenceCache& cache, const rd::View& view,
+                std::size_t view_index, int w, int h, std::size_t& index, std::vector<Row>& rows) {
   const rd::Camera camera = rd::make_camera(view, w, h);
-  rd::RenderSettings gs;
-  gs.width = w, gs.height = h;
-  gs.outputs = rd::Outputs{false, false, false, false};
-  gs.outputs.normal = true;
-  const rd::Images gbuffer = renderer.render(scene, view, gs);
+  std::optional<rd::Images> gbuffer;
+  auto reference = [&](const ref::ReferenceSettings& rs) {
+    if (!gbuffer) {
+      rd::RenderSettings gs;
+      gs.width = w, gs.height = h;
+      gs.outputs = rd::Outputs{false, false, false, false};
+      gs.outputs.normal = true;
+      gbuffer = renderer.render(scene, view, gs);
+    }
+    return cache.get(camera, gbuffer->depth, gbuffer->normal, rs);
+  };
   const ref::MetricOptions metric{8, 0.05f, g.rays};
   cv::Mat unbounded;
-  if (g.unbounded)
-    unbounded =
-        cache.get(camera, gbuffer.depth, gbuffer.normal, {g.rays, 1, ref::Variant::kUnbounded});
   for (const TechniqueGrid& tg : g.techniques) {
     const std::vector<float> intensities =
         tg.intensities.empty() ? std::vector<float>{rd::default_params(tg.technique).intensity}
                                : tg.intensities;
     for (int samples : tg.samples) {
       for (float radius : tg.radii) {
-        const cv::Mat reference =
-            cache.get(camera, gbuffer.depth, gbuffer.normal, {g.rays, radius, ref::Variant::kAo});
+        cv::Mat at_radius;
         for (float intensity : intensities) {
+          const std::size_t i = index++;
+          if (static_cast<int>(i % static_cast<std::size_t>(shard.shard_count)) !=
+              shard.shard_index)
+            continue;
+          if (at_radius.empty()) at_radius = reference({g.rays, radius, ref::Variant::kAo});
+          if (g.unbounded && unbounded.empty())
+            unbounded = reference({g.rays, 1, ref::Variant::kUnbounded});
           rd::RenderSettings s;
           s.width = w, s.height = h, s.technique = tg.technique;
           s.params = rd::default_params(tg.technique);
@@ -119,7 +122,8 @@ void sweep_view(rd::Renderer& renderer, const SweepGrid& g, const rd::Scene& sce
           s.params.samples = samples, s.params.radius = radius, s.params.intensity = intensity;
           s.outputs = rd::parse_outputs("ao_float");
           const Timed t = render_timed(renderer, scene, view, s, g.runs);
-          Row row{scene.name,
+          Row row{i,
+                  scene.name,
                   view.name,
                   view_index,
                   tg.technique,
@@ -129,7 +133,7 @@ void sweep_view(rd::Renderer& renderer, const SweepGrid& g, const rd::Scene& sce
                   radius,
                   intensity,
                   t.gl_ms,
-                  ref::measure_error(t.images.ao, reference, t.images.depth, metric),
+                  ref::measure_error(t.images.ao, at_radius, t.images.depth, metric),
                   {},
                   tg.params};
           if (g.unbounded)
@@ -200,22 +204,6 @@ std::string markdown(const std::vector<Row>& rows, const nlohmann::ordered_json&
   return md;
 }
 
-nlohmann::ordered_json row_json(const Row& r, bool unbounded) {
-  nlohmann::ordered_json j{{"scene", r.scene},
-                           {"view", r.view},
-                           {"technique", rd::technique_name(r.technique)},
-                           {"width", r.width},
-                           {"height", r.height},
-                           {"samples", r.samples},
-                           {"radius", r.radius},
-                           {"intensity", r.intensity},
-                           {"params", r.params},
-                           {"ao_gl_ms", r.gl_ms},
-                           {"error", to_json(r.error)}};
-  if (unbounded) j["error_unbounded"] = to_json(r.unbounded);
-  return j;
-}
-
 // For each scene, technique and resolution: the configuration with the lowest RMSE on the
 // first view, and its RMSE on the second (beside the second view's own best).
 nlohmann::ordered_json fit_on_one_view(const std::vector<Row>& rows) {
@@ -277,7 +265,7 @@ void write_plots(const std::vector<Row>& rows, const fs::path& dir, const std::s
         points,
         fmt::format("{}: AO time vs RMSE at {}x{} (mean over scenes and views)", name, res.first,
                     res.second),
-        "AO passes, median wall ms (llvmpipe, log scale)",
+        "AO passes, median GPU ms (log scale)",
         unbounded ? "RMSE vs ray-traced AO (unbounded)" : "RMSE vs ray-traced AO (radius r)");
     write_file_atomic(dir / fmt::format("sweep_{}x{}{}.svg", res.first, res.second,
                                         unbounded ? "_unbounded" : ""),
@@ -300,38 +288,37 @@ std::pair<int, int> parse_size(const std::string& text) {
   return {w, h};
 }
 
-int run_sweep(const std::string& grid_file, const std::vector<std::string>& resolutions,
-              const std::vector<std::string>& scenes, const std::string& out) {
-  SweepGrid g = read_sweep_grid(grid_file);
-  if (!scenes.empty()) g.scenes = scenes;
-  if (!resolutions.empty()) {
-    g.resolutions.clear();
-    for (const std::string& r : resolutions) g.resolutions.push_back(parse_size(r));
-  }
-  rd::Renderer renderer;
-  std::vector<Row> rows;
-  for (const std::string& name : g.scenes) {
-    const rd::Scene scene = rd::load_scene(name);
-    const std::vector<const rd::View*> views = pick_views(scene, g.views);
-    ref::ReferenceCache cache(scene, ref::default_cache_dir());
-    for (const auto& [w, h] : g.resolutions) {
-      for (std::size_t v = 0; v < views.size(); ++v)
-        sweep_view(renderer, g, scene, cache, *views[v], v, w, h, rows);
-    }
-  }
-  const fs::path dir(out);
+// What every shard of one sweep shares, and a merge checks.
+struct SweepMeta {
+  std::string grid, gl, gl_device;
+  int rays = 0, runs = 0;
+  bool unbounded = false;
+  std::size_t configurations = 0;  // in the whole grid, every shard's rows together
+};
+
+nlohmann::ordered_json meta_json(const SweepMeta& m) {
+  return {{"grid", m.grid},
+          {"rays", m.rays},
+          {"runs", m.runs},
+          {"gl", m.gl},
+          {"gl_device", m.gl_device},
+          {"unbounded", m.unbounded},
+          {"configurations", m.configurations}};
+}
+
+void write_sweep(const fs::path& dir, const SweepMeta& m, const std::vector<Row>& rows,
+                 const std::string& shard) {
   fs::create_directories(dir);
-  write_text(dir / "sweep.csv", csv(rows, g.unbounded));
-  nlohmann::ordered_json j;
-  j["grid"] = g.name, j["rays"] = g.rays, j["runs"] = g.runs, j["gl"] = renderer.gl_description();
-  j["gl_device"] = renderer.gl_source();
+  write_text(dir / "sweep.csv", csv(rows, m.unbounded));
+  nlohmann::ordered_json j = meta_json(m);
+  if (!shard.empty()) j["shard"] = shard;
   j["rows"] = nlohmann::ordered_json::array();
-  for (const Row& r : rows) j["rows"].push_back(row_json(r, g.unbounded));
+  for (const Row& r : rows) j["rows"].push_back(row_json(r, m.unbounded));
   j["fit_on_one_view"] = fit_on_one_view(rows);
   write_text(dir / "sweep.json", j.dump(2) + "\n");
-  write_text(dir / "sweep.md", markdown(rows, j["fit_on_one_view"], g.unbounded));
-  write_plots(rows, dir, g.name, false);
-  if (g.unbounded) write_plots(rows, dir, g.name, true);
+  write_text(dir / "sweep.md", markdown(rows, j["fit_on_one_view"], m.unbounded));
+  write_plots(rows, dir, m.grid, false);
+  if (m.unbounded) write_plots(rows, dir, m.grid, true);
   fmt::print("fit on the first view, evaluated on the second:\n");
   for (const auto& f : j["fit_on_one_view"]) {
     fmt::print("  {} {} {}x{}: s={} r={} k={} RMSE {:.4f} on {}, {:.4f} on {} (its best {:.4f})\n",
@@ -343,25 +330,111 @@ int run_sweep(const std::string& grid_file, const std::vector<std::string>& reso
                f["best_rmse_eval_view"].get<double>());
   }
   fmt::print("{} rows: {}\n", rows.size(), (dir / "sweep.csv").string());
+}
+
+int run_sweep(const std::string& grid_file, const std::vector<std::string>& resolutions,
+              const std::vector<std::string>& scenes, const std::string& shard_text,
+              const std::string& out) {
+  SweepGrid g = read_sweep_grid(grid_file);
+  if (!scenes.empty()) g.scenes = scenes;
+  if (!resolutions.empty()) {
+    g.resolutions.clear();
+    for (const std::string& r : resolutions) g.resolutions.push_back(parse_size(r));
+  }
+  harness::Selection shard;
+  if (!shard_text.empty()) harness::set_shard(shard, shard_text);
+  rd::Renderer renderer;
+  std::vector<Row> rows;
+  std::size_t index = 0;
+  for (const std::string& name : g.scenes) {
+    const rd::Scene scene = rd::load_scene(name);
+    const std::vector<const rd::View*> views = pick_views(scene, g.views);
+    ref::ReferenceCache cache(scene, ref::default_cache_dir());
+    for (const auto& [w, h] : g.resolutions) {
+      for (std::size_t v = 0; v < views.size(); ++v)
+        sweep_view(renderer, g, shard, scene, cache, *views[v], v, w, h, index, rows);
+    }
+  }
+  const SweepMeta m{
+      g.name, renderer.gl_description(), renderer.gl_source(), g.rays, g.runs, g.unbounded, index};
+  write_sweep(out, m, rows,
+              shard_text.empty() ? "" : fmt::format("{}/{}", shard.shard_index, shard.shard_count));
+  return kExitSame;
+}
+
+// The shards' rows in the grid's order, written as one run writes them. Refuses shards of
+// different grids or devices, a configuration twice, and a grid with configurations missing.
+int merge_sweeps(const std::vector<std::string>& shard_dirs, const std::string& out) {
+  std::optional<SweepMeta> meta;
+  std::map<std::size_t, Row> by_index;
+  for (const std::string& d : shard_dirs) {
+    const fs::path file = fs::path(d) / "sweep.json";
+    SweepMeta m;
+    std::vector<Row> rows;
+    try {
+      const std::vector<unsigned char> bytes = read_file(file);
+      const nlohmann::json j = nlohmann::json::parse(bytes.begin(), bytes.end());
+      m = {j.at("grid"), j.at("gl"),        j.at("gl_device"),     j.at("rays"),
+           j.at("runs"), j.at("unbounded"), j.at("configurations")};
+      for (const nlohmann::json& r : j.at("rows")) rows.push_back(row_from_json(r));
+    } catch (const FileError&) {
+      throw;
+    } catch (const std::exception& e) {
+      throw FileError(file.string() + ": not a sweep.json: " + e.what());
+    }
+    if (!meta) meta = m;
+    if (meta_json(m) != meta_json(*meta)) {
+      throw FileError(file.string() + ": another grid, its settings or GL device than " +
+                      (fs::path(shard_dirs.front()) / "sweep.json").string());
+    }
+    for (Row& r : rows) {
+      const std::size_t i = r.index;
+      if (i >= m.configurations || !by_index.emplace(i, std::move(r)).second) {
+        throw FileError(
+            fmt::format("{}: configuration {} is out of range or in two shards", file.string(), i));
+      }
+    }
+  }
+  if (!meta || by_index.size() != meta->configurations) {
+    throw std::invalid_argument(fmt::format("the shards hold {} of the grid's {} configurations",
+                                            by_index.size(), meta ? meta->configurations : 0));
+  }
+  std::vector<Row> rows;
+  for (auto& [i, r] : by_index) rows.push_back(std::move(r));
+  write_sweep(out, *meta, rows, "");
   return kExitSame;
 }
 
 }  // namespace
 
 void add_sweep_command(CLI::App& app, int& rc) {
-  auto grid = std::make_shared<std::string>();
-  auto out = std::make_shared<std::string>("reports/sweep");
-  auto resolutions = std::make_shared<std::vector<std::string>>();
-  auto scenes = std::make_shared<std::vector<std::string>>();
+  struct Args {
+    std::string grid, out = "reports/sweep", shard;
+    std::vector<std::string> resolutions, scenes, merge;
+  };
+  auto a = std::make_shared<Args>();
   CLI::App* cmd = app.add_subcommand(
       "sweep", "Time and error of each technique over a samples x radius x resolution grid");
-  cmd->add_option("grid", *grid, "grid file (suites/sweep_ci.toml, suites/sweep_full.toml)")
-      ->required();
-  cmd->add_option("--out", *out, "output directory")->capture_default_str();
-  cmd->add_option("--resolution", *resolutions, "WxH, repeatable: replaces the grid's resolutions");
-  cmd->add_option("--scene", *scenes, "scene name or file, repeatable: replaces the grid's scenes");
-  guarded(cmd, rc, "sweep", [grid, resolutions, scenes, out] {
-    return run_sweep(*grid, *resolutions, *scenes, *out);
+  cmd->add_option("grid", a->grid, "grid file (suites/sweep_ci.toml, suites/sweep_full.toml)");
+  cmd->add_option("--out", a->out, "output directory")->capture_default_str();
+  cmd->add_option("--resolution", a->resolutions,
+                  "WxH, repeatable: replaces the grid's resolutions");
+  cmd->add_option("--scene", a->scenes,
+                  "scene name or file, repeatable: replaces the grid's scenes");
+  cmd->add_option("--shard", a->shard,
+                  "i/n: run every n-th configuration from the i-th (0-based; default: "
+                  "GTEST_SHARD_INDEX / GTEST_TOTAL_SHARDS when set); merge with --merge");
+  cmd->add_option("--merge", a->merge,
+                  "shard output folder, repeatable: merge the shards' rows into --out as one "
+                  "run writes them (no grid, nothing rendered)");
+  guarded(cmd, rc, "sweep", [a] {
+    if (!a->merge.empty()) {
+      if (!a->grid.empty() || !a->shard.empty() || !a->resolutions.empty() || !a->scenes.empty())
+        throw std::invalid_argument("--merge takes only shard folders and --out");
+      return merge_sweeps(a->merge, a->out);
+    }
+    if (a->grid.empty()) throw std::invalid_argument("a grid file is required (or --merge)");
+    return run_sweep(a->grid, a->resolutions, a->scenes, a->shard, a->out);
   });
 }
 

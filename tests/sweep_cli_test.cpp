@@ -157,6 +157,44 @@ TEST(SweepCli, FixedParamsApplyToTheirTechnique) {
   EXPECT_TRUE(row.ends_with(",\"blur=none level_weights=1,0,0,0,0\"")) << row;
 }
 
+// A grid split over shards and merged is the single run: the same rows in the same order with
+// the same errors and fit (times are measured again, so they are left out of the comparison).
+TEST(SweepCli, ShardsMergeIntoTheSingleRun) {
+  const fs::path dir = scratch("shards");
+  const std::string grid = std::string(AOSUITE_SOURCE_DIR) + "/suites/sweep_ci.toml";
+  auto sweep = [&](const std::string& args) {
+    return run_shell(command(dir, "sweep " + args), dir);
+  };
+  ASSERT_EQ(sweep(grid + " --out " + (dir / "one").string()).rc, 0);
+  for (int i = 0; i < 3; ++i) {
+    const std::string shard = std::to_string(i) + "/3";
+    ASSERT_EQ(
+        sweep(grid + " --shard " + shard + " --out " + (dir / shard.substr(0, 1)).string()).rc, 0);
+  }
+  const std::string shards =
+      " --merge " + (dir / "0").string() + " --merge " + (dir / "1").string() + " --merge ";
+  const Outcome merged = sweep(shards + (dir / "2").string() + " --out " + (dir / "all").string());
+  ASSERT_EQ(merged.rc, 0) << merged.err;
+  auto load = [](const fs::path& p) {
+    nlohmann::json j = nlohmann::json::parse(std::ifstream(p / "sweep.json"));
+    for (nlohmann::json& r : j["rows"]) r.erase("ao_gl_ms");
+    return j;
+  };
+  const nlohmann::json one = load(dir / "one"), all = load(dir / "all");
+  EXPECT_EQ(all["rows"], one["rows"]);
+  EXPECT_EQ(all["fit_on_one_view"], one["fit_on_one_view"]);
+  EXPECT_EQ(all["configurations"], one["configurations"]);
+  EXPECT_FALSE(all.contains("shard"));
+  EXPECT_TRUE(fs::exists(dir / "all" / "sweep_160x90.svg"));
+  // A shard missing, or one merged twice, is refused and writes nothing.
+  for (const std::string& bad :
+       {shards + (dir / "1").string(), " --merge " + (dir / "0").string()}) {
+    const Outcome o = sweep(bad + " --out " + (dir / "bad").string());
+    EXPECT_EQ(o.rc, 2) << bad;
+    EXPECT_FALSE(fs::exists(dir / "bad")) << bad;
+  }
+}
+
 TEST(SweepCli, BadInputExitsTwo) {
   const fs::path dir = scratch("bad");
   std::ofstream(dir / "bad.toml") << "scenes = [\"village\"]\nresolutions = [[160, 90]]\n"
