@@ -16,7 +16,14 @@ import sys
 import tempfile
 from pathlib import Path
 
-TECHNIQUES = ["alchemy", "sao", "mssao", "ue4", "pmi"]
+
+
+def techniques(binary):
+    """The registered techniques, as `render --help` lists them ("alchemy|sao|...")."""
+    text = subprocess.run([binary, "render", "--help"], check=True, capture_output=True,
+                          text=True).stdout
+    line = next(l for l in text.splitlines() if "--technique" in l)
+    return line.split()[-1].split("|")
 
 
 def render(args, technique, width, height, out):
@@ -42,7 +49,7 @@ def main():
     for size in args.sizes.split(","):
         width, height = (int(v) for v in size.split("x"))
         rows = []
-        for technique in TECHNIQUES:
+        for technique in techniques(args.bin):
             with tempfile.TemporaryDirectory() as out:
                 j = render(args, technique, width, height, out)
             device = f"{j['gl_device']}: {j['gl']}"

@@ -90,6 +90,10 @@ PassTimer::PassTimer(std::string name) : name_(std::move(name)) {
   GLuint id = 0;
   glCreateQueries(GL_TIME_ELAPSED, 1, &id);
   query_ = Query(id);
+  // Submit the work so far (no wait): a software rasteriser such as llvmpipe bins a query's
+  // begin into whatever batch is open, which would stamp it while the previous pass still
+  // rasterises and charge that pass's tail to this one.
+  glFlush();
   glBeginQuery(GL_TIME_ELAPSED, id);
 }
 

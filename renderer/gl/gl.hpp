@@ -47,6 +47,7 @@
   X(PFNGLENABLEVERTEXARRAYATTRIBPROC, glEnableVertexArrayAttrib)         \
   X(PFNGLENDQUERYPROC, glEndQuery)                                       \
   X(PFNGLFINISHPROC, glFinish)                                           \
+  X(PFNGLFLUSHPROC, glFlush)                                             \
   X(PFNGLGETERRORPROC, glGetError)                                       \
   X(PFNGLGETINTEGERVPROC, glGetIntegerv)                                 \
   X(PFNGLGETNAMEDBUFFERSUBDATAPROC, glGetNamedBufferSubData)             \
