@@ -112,7 +112,7 @@ TEST(GlBackend, PassTimesAreEachPositiveAndAddUpWithinTheFrame) {
   const test::TempDir dir;
   const test::Outcome o = test::run_shell(
       kBin +
-          " render --scene village --technique sao --width 320 --height 180 --runs 3 "
+          " render --scene village --technique sao --width 320 --height 180 --runs 1 "
           "--outputs all --out " +
           dir.path().string(),
       dir.path());
@@ -127,7 +127,8 @@ TEST(GlBackend, PassTimesAreEachPositiveAndAddUpWithinTheFrame) {
     sum += j["median_ms"][pass].get<double>();
   }
   // Passes run one after another, so their GPU times cannot add up to more than the wall
-  // time around them (10 % and 1 ms for clock granularity; medians of 3 runs).
+  // time around them (10 % and 1 ms for clock granularity). One timed frame, so every figure
+  // is of the same frame: medians of several would each come from another.
   EXPECT_LE(sum, frame * 1.1 + 1.0) << j["median_ms"].dump();
   EXPECT_GT(frame, 0);
 }
