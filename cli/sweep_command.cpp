@@ -119,7 +119,8 @@ void sweep_view(rd::Renderer& renderer, const SweepGrid& g, const harness::Selec
           s.width = w, s.height = h, s.technique = tg.technique;
           s.params = rd::default_params(tg.technique);
           for (const auto& [k, v] : tg.params) rd::set_param(s.params, k, v);
-          s.params.samples = samples, s.params.radius = radius, s.params.intensity = intensity;
+          if (samples > 0) s.params.samples = samples;
+          s.params.radius = radius, s.params.intensity = intensity;
           s.outputs = rd::parse_outputs("ao_float");
           const Timed t = render_timed(renderer, scene, view, s, g.runs);
           Row row{i,

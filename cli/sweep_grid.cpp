@@ -94,11 +94,19 @@ SweepGrid parse(const toml::table& t, const fs::path& path) {
   for (const auto& [name, node] : *techniques) {
     const std::string where = fmt::format("techniques.{}", name.str());
     const auto tv = toml::node_view<const toml::node>(node);
-    TechniqueGrid tg{renderer::parse_technique(name.str()),
-                     numbers<int>(tv["samples"], where + ".samples"),
-                     numbers<float>(tv["radius"], where + ".radius"),
-                     {},
-                     {}};
+    const renderer::Technique technique = renderer::parse_technique(name.str());
+    // A technique that takes no sample count (GTAO: slices and steps) has no samples axis.
+    const bool takes_samples = renderer::applies(renderer::param_spec("samples"), technique);
+    if (!takes_samples && tv["samples"]) {
+      throw std::invalid_argument(fmt::format(
+          "{}.samples: {} takes no sample count (set its own keys in params)", where, name.str()));
+    }
+    TechniqueGrid tg{
+        technique,
+        takes_samples ? numbers<int>(tv["samples"], where + ".samples") : std::vector<int>{0},
+        numbers<float>(tv["radius"], where + ".radius"),
+        {},
+        {}};
     if (tv["intensity"]) tg.intensities = numbers<float>(tv["intensity"], where + ".intensity");
     if (tv["params"]) tg.params = fixed_params(tv["params"], tg.technique, path, where + ".params");
     g.techniques.push_back(std::move(tg));

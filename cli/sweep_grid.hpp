@@ -15,7 +15,7 @@ namespace aosuite::cli {
 
 struct TechniqueGrid {
   renderer::Technique technique;
-  std::vector<int> samples;
+  std::vector<int> samples;  // {0} for a technique that takes no sample count
   std::vector<float> radii;
   std::vector<float> intensities;  // empty: the technique's default
   // Other parameters, the same for every configuration (renderer::set_param keys and text).

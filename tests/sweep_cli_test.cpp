@@ -61,9 +61,10 @@ TEST(SweepCli, CiGridHasFiniteErrorsInEveryRow) {
       EXPECT_TRUE(std::isfinite(v) && !cells[i].empty()) << header[i] << " in " << line;
     }
   }
-  EXPECT_EQ(rows, 4 * 4 * 2);  // four techniques x 2 samples x 2 radii, two views
+  // four techniques x 2 samples x 2 radii and GTAO x 2 radii, two views
+  EXPECT_EQ(rows, (4 * 4 + 2) * 2);
   const auto j = nlohmann::json::parse(std::ifstream(dir / "out" / "sweep.json"));
-  EXPECT_EQ(j["fit_on_one_view"].size(), 4u);
+  EXPECT_EQ(j["fit_on_one_view"].size(), 5u);
   EXPECT_TRUE(fs::exists(dir / "out" / "sweep_160x90.svg"));
   EXPECT_TRUE(fs::exists(dir / "out" / "sweep_160x90_unbounded.svg"));
   EXPECT_FALSE(fs::is_empty(dir / "cache"));
@@ -86,7 +87,7 @@ TEST(SweepCli, SceneAndResolutionReplaceTheGrids) {
     EXPECT_EQ(cells.at(0), "plane") << line;
     EXPECT_EQ(cells.at(3) + "x" + cells.at(4), "64x36") << line;
   }
-  EXPECT_EQ(rows, 4 * 4 * 2);  // the plane's two views
+  EXPECT_EQ(rows, (4 * 4 + 2) * 2);  // the plane's two views
 }
 
 TEST(SweepCli, ErrorPrintsJsonAndWritesTheReference) {
@@ -212,6 +213,13 @@ TEST(SweepCli, BadInputExitsTwo) {
     EXPECT_EQ(o.rc, 2) << params;
     EXPECT_NE(o.err.find("techniques.sao.params"), std::string::npos) << o.err;
   }
+  // A sample count for a technique that takes none (GTAO) would label rows with a value no
+  // pass read.
+  std::ofstream(dir / "gtao.toml") << "scenes = [\"village\"]\nresolutions = [[160, 90]]\n"
+                                      "[techniques.gtao]\nsamples = [4]\nradius = [1]\n";
+  o = run_shell(command(dir, "sweep " + (dir / "gtao.toml").string()), dir);
+  EXPECT_EQ(o.rc, 2);
+  EXPECT_NE(o.err.find("gtao takes no sample count"), std::string::npos) << o.err;
   o = run_shell(command(dir, "sweep " + std::string(AOSUITE_SOURCE_DIR) +
                                  "/suites/sweep_ci.toml --scene atlantis"),
                 dir);
