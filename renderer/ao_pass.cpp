@@ -3,6 +3,8 @@
 #include <array>
 #include <stdexcept>
 
+#include "renderer/ao_uniforms.hpp"
+
 namespace aosuite::renderer {
 
 namespace {
@@ -11,14 +13,14 @@ namespace {
 // UE4, GTAO); each shader's header has the estimator.
 class GBufferAoPass final : public AoPass {
  public:
-  GBufferAoPass(const char* fragment, OwnUniforms own_uniforms)
-      : program_(make_program({"fullscreen.vert", fragment})), own_uniforms_(own_uniforms) {}
+  explicit GBufferAoPass(const char* fragment)
+      : program_(make_program({"fullscreen.vert", fragment})) {}
   std::vector<PassTimer> run(const GBuffer& g, const Camera& camera, const AoParams& params,
                              GLuint out_fb) override {
     PassTimer timer("ao");
     const GLuint p = program_.get();
-    set_ao_uniforms(p, params, camera);
-    if (own_uniforms_) own_uniforms_(p, params);
+    set_camera_uniforms(p, camera);
+    uniforms_.upload(ao_uniform_block(params, camera));
     bind_textures(p, {{"u_depth", g.depth.get()}, {"u_normal", g.normal.get()}});
     draw_geometry_pixels(out_fb, g.width, g.height);
     timer.stop();
@@ -29,13 +31,13 @@ class GBufferAoPass final : public AoPass {
 
  private:
   Program program_;
-  OwnUniforms own_uniforms_;
+  AoUniformBuffer uniforms_;
 };
 
 }  // namespace
 
-std::unique_ptr<AoPass> make_gbuffer_ao_pass(const char* fragment, OwnUniforms own_uniforms) {
-  return std::make_unique<GBufferAoPass>(fragment, own_uniforms);
+std::unique_ptr<AoPass> make_gbuffer_ao_pass(const char* fragment) {
+  return std::make_unique<GBufferAoPass>(fragment);
 }
 
 std::unique_ptr<AoPass> make_alchemy_pass() { return make_gbuffer_ao_pass("alchemy.frag"); }
@@ -55,18 +57,6 @@ int spiral_turns(int samples) {
       1, 1, 1, 2, 3, 2,  5,  2, 3,  2,  3, 3,  5, 5, 3,  4,  7,  5,  5,  7,  9,  8,  5,  5,  7,
       7, 7, 8, 5, 8, 11, 12, 7, 10, 13, 8, 11, 8, 7, 14, 11, 11, 13, 12, 13, 19, 17, 13, 11, 18};
   return samples >= 0 && samples < 50 ? kTurns[static_cast<std::size_t>(samples)] : 7;
-}
-
-void set_ao_uniforms(GLuint p, const AoParams& params, const Camera& camera) {
-  set_camera_uniforms(p, camera);
-  glProgramUniform1i(p, glGetUniformLocation(p, "u_samples"), params.samples);
-  glProgramUniform1f(p, glGetUniformLocation(p, "u_radius"), params.radius);
-  glProgramUniform1f(p, glGetUniformLocation(p, "u_bias"), params.bias);
-  glProgramUniform1f(p, glGetUniformLocation(p, "u_intensity"), params.intensity);
-  glProgramUniform1f(p, glGetUniformLocation(p, "u_contrast"), params.contrast);
-  glProgramUniform1f(p, glGetUniformLocation(p, "u_turns"),
-                     static_cast<float>(spiral_turns(params.samples)));
-  glProgramUniform1f(p, glGetUniformLocation(p, "u_max_pixel_radius"), 1e30f);
 }
 
 }  // namespace aosuite::renderer

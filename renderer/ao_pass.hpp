@@ -21,16 +21,10 @@ class AoPass {
 std::unique_ptr<AoPass> make_ao_pass(Technique technique);
 
 // A technique that is one full-screen draw over the G-buffer's depth and normals with
-// `fragment` (a file in renderer/shaders/): the shared uniforms (set_ao_uniforms), then the
-// technique's own, if any.
-using OwnUniforms = void (*)(GLuint program, const AoParams& params);
-std::unique_ptr<AoPass> make_gbuffer_ao_pass(const char* fragment,
-                                             OwnUniforms own_uniforms = nullptr);
+// `fragment` (a file in renderer/shaders/), which reads shaders/ao_uniforms.glsl's block.
+std::unique_ptr<AoPass> make_gbuffer_ao_pass(const char* fragment);
 
 // SAO's discrepancy-minimising spiral turns for s samples (G3D's table), 7 beyond it.
 int spiral_turns(int samples);
-
-// Sets the uniforms every estimator shares (u_samples, u_radius, ...), camera included.
-void set_ao_uniforms(GLuint program, const AoParams& params, const Camera& camera);
 
 }  // namespace aosuite::renderer

@@ -38,7 +38,6 @@ GBuffer make_gbuffer(int width, int height) {
 void set_camera_uniforms(GLuint program, const Camera& camera) {
   glProgramUniform2f(program, glGetUniformLocation(program, "u_ndc_to_view"), camera.ndc_to_view.x,
                      camera.ndc_to_view.y);
-  glProgramUniform1f(program, glGetUniformLocation(program, "u_proj_scale"), camera.proj_scale);
 }
 
 void set_view_projection(GLuint program, const Camera& camera) {

@@ -38,7 +38,8 @@ struct GBuffer {
 };
 GBuffer make_gbuffer(int width, int height);
 
-// Sets u_ndc_to_view and u_proj_scale on `program` (each is skipped if the program lacks it).
+// Sets u_ndc_to_view on `program` (common.glsl's; skipped if the program lacks it). The AO
+// passes' u_proj_scale is in their uniform block (ao_uniforms.hpp).
 void set_camera_uniforms(GLuint program, const Camera& camera);
 // u_view and u_projection, for the passes that rasterise the scene's triangles.
 void set_view_projection(GLuint program, const Camera& camera);

@@ -6,6 +6,7 @@
 #include <array>
 
 #include "renderer/ao_pass.hpp"
+#include "renderer/ao_uniforms.hpp"
 
 namespace aosuite::renderer {
 namespace {
@@ -64,9 +65,10 @@ class MssaoPass final : public AoPass {
       level_params.bias = params.bias * static_cast<float>(1 << l);
       Camera level_camera = camera;
       level_camera.proj_scale = camera.proj_scale / static_cast<float>(1 << l);
-      set_ao_uniforms(p, level_params, level_camera);
-      glProgramUniform1f(p, glGetUniformLocation(p, "u_max_pixel_radius"),
-                         params.mssao.max_pixel_radius);
+      set_camera_uniforms(p, level_camera);
+      AoUniformBlock block = ao_uniform_block(level_params, level_camera);
+      block.max_pixel_radius = params.mssao.max_pixel_radius;
+      uniforms_.upload(block);
       glProgramUniform1i(p, glGetUniformLocation(p, "u_has_coarse"), l < top);
       glProgramUniform1i(p, glGetUniformLocation(p, "u_local"), level_params.intensity > 0);
       glProgramUniform1i(p, glGetUniformLocation(p, "u_finest"), l == 0);
@@ -105,6 +107,7 @@ class MssaoPass final : public AoPass {
   }
 
   Program downsample_, level_;
+  AoUniformBuffer uniforms_;
   std::array<Level, kLevels> levels_;
   int width_ = 0, height_ = 0;
 };

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "renderer/ao_pass.hpp"
+#include "renderer/ao_uniforms.hpp"
 
 namespace aosuite::renderer {
 namespace {
@@ -36,7 +37,8 @@ class SaoPass final : public AoPass {
 
     PassTimer ao_timer("ao");
     const GLuint p = ao_.get();
-    set_ao_uniforms(p, params, camera);
+    set_camera_uniforms(p, camera);
+    uniforms_.upload(ao_uniform_block(params, camera));
     glProgramUniform1i(p, glGetUniformLocation(p, "u_max_level"), levels_ - 1);
     bind_textures(p, {{"u_depth", tex}});
     draw_geometry_pixels(out_fb, g.width, g.height);
@@ -60,6 +62,7 @@ class SaoPass final : public AoPass {
   }
 
   Program minify_, ao_;
+  AoUniformBuffer uniforms_;
   Texture pyramid_;
   std::vector<Framebuffer> level_fbs_;
   int width_ = 0, height_ = 0, levels_ = 1;

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <thread>
 
+#include "renderer/ao_uniforms.hpp"
 #include "renderer/params.hpp"
 #include "renderer/scene.hpp"
 
@@ -294,6 +295,41 @@ TEST(Renderer, IntensityDarkensEveryTechnique) {
     ASSERT_GT(occlusion, 1e-3) << technique_name(t);
     const double more = 0.3 * std::min(occlusion, 1 - occlusion);
     EXPECT_GT(1 - geometry_stats(render(corner, 0, s)).mean, occlusion + more) << technique_name(t);
+  }
+}
+
+// The C++ twin of shaders/ao_uniforms.glsl must lay the block out as the driver does, for
+// every program that reads it.
+TEST(Renderer, AoUniformBlockMatchesTheShadersLayout) {
+  shared_renderer();  // a current context
+  const char* names[] = {
+      "u_samples",       "u_radius",           "u_bias",       "u_intensity", "u_contrast",
+      "u_turns",         "u_max_pixel_radius", "u_proj_scale", "u_slices",    "u_steps",
+      "u_falloff_range", "u_thin_occluder"};
+  const std::size_t expected[] = {offsetof(AoUniformBlock, samples),
+                                  offsetof(AoUniformBlock, radius),
+                                  offsetof(AoUniformBlock, bias),
+                                  offsetof(AoUniformBlock, intensity),
+                                  offsetof(AoUniformBlock, contrast),
+                                  offsetof(AoUniformBlock, turns),
+                                  offsetof(AoUniformBlock, max_pixel_radius),
+                                  offsetof(AoUniformBlock, proj_scale),
+                                  offsetof(AoUniformBlock, slices),
+                                  offsetof(AoUniformBlock, steps),
+                                  offsetof(AoUniformBlock, falloff_range),
+                                  offsetof(AoUniformBlock, thin_occluder)};
+  for (const char* fragment :
+       {"alchemy.frag", "sao.frag", "ue4.frag", "gtao.frag", "mssao_level.frag"}) {
+    const Program program = make_program({"fullscreen.vert", fragment});
+    GLuint indices[std::size(names)];
+    glGetUniformIndices(program.get(), std::size(names), names, indices);
+    for (std::size_t i = 0; i < std::size(names); ++i) {
+      // std140 keeps every member of a used block active, so each one has its offset.
+      ASSERT_NE(indices[i], GL_INVALID_INDEX) << fragment << " " << names[i];
+      GLint offset = -1;
+      glGetActiveUniformsiv(program.get(), 1, &indices[i], GL_UNIFORM_OFFSET, &offset);
+      EXPECT_EQ(offset, static_cast<GLint>(expected[i])) << fragment << " " << names[i];
+    }
   }
 }
 

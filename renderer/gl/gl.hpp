@@ -50,7 +50,9 @@
   X(PFNGLFLUSHPROC, glFlush)                                             \
   X(PFNGLGETERRORPROC, glGetError)                                       \
   X(PFNGLGETINTEGERVPROC, glGetIntegerv)                                 \
+  X(PFNGLGETACTIVEUNIFORMSIVPROC, glGetActiveUniformsiv)                 \
   X(PFNGLGETNAMEDBUFFERSUBDATAPROC, glGetNamedBufferSubData)             \
+  X(PFNGLGETUNIFORMINDICESPROC, glGetUniformIndices)                     \
   X(PFNGLGETPROGRAMINFOLOGPROC, glGetProgramInfoLog)                     \
   X(PFNGLGETPROGRAMIVPROC, glGetProgramiv)                               \
   X(PFNGLGETQUERYOBJECTUI64VPROC, glGetQueryObjectui64v)                 \
@@ -62,6 +64,7 @@
   X(PFNGLLINKPROGRAMPROC, glLinkProgram)                                 \
   X(PFNGLMEMORYBARRIERPROC, glMemoryBarrier)                             \
   X(PFNGLNAMEDBUFFERSTORAGEPROC, glNamedBufferStorage)                   \
+  X(PFNGLNAMEDBUFFERSUBDATAPROC, glNamedBufferSubData)                   \
   X(PFNGLNAMEDFRAMEBUFFERDRAWBUFFERSPROC, glNamedFramebufferDrawBuffers) \
   X(PFNGLNAMEDFRAMEBUFFERTEXTUREPROC, glNamedFramebufferTexture)         \
   X(PFNGLPIXELSTOREIPROC, glPixelStorei)                                 \

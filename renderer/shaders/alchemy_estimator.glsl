@@ -3,14 +3,8 @@
 // Taps on SAO's spiral within the world-space radius r. The factor r (Unity's form of the
 // implicit falloff u) and eps scaled by r^2 make the estimator independent of scene scale;
 // at r = 1 they are the published constants (eps = 1e-4).
-uniform int u_samples;
-uniform float u_radius;
-uniform float u_bias;       // beta, in metres per metre of depth
-uniform float u_intensity;  // sigma
-uniform float u_contrast;   // k
-uniform float u_proj_scale; // pixels per unit at unit distance: H / (2 tan(fovy/2))
-uniform float u_turns;      // spiral turns
-uniform float u_max_pixel_radius;
+// u_bias is beta, in metres per metre of depth; u_contrast is k.
+#include "ao_uniforms.glsl"
 
 float alchemy_ao(sampler2D depth, ivec2 p, float z, vec3 n) {
   vec2 size = vec2(textureSize(depth, 0));

@@ -9,14 +9,7 @@
 // an unoccluded plane.
 uniform sampler2D u_depth;
 uniform sampler2D u_normal;
-uniform float u_radius;
-uniform float u_intensity;
-uniform float u_contrast;  // XeGTAO's FinalValuePower
-uniform float u_proj_scale;
-uniform int u_slices;
-uniform int u_steps;             // per side
-uniform float u_falloff_range;   // share of the radius over which occluders fade out
-uniform float u_thin_occluder;   // XeGTAO's ThinOccluderCompensation
+#include "ao_uniforms.glsl"  // u_contrast is XeGTAO's FinalValuePower
 layout(location = 0) out float o_ao;
 
 const float kPi = 3.14159265;

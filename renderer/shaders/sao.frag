@@ -6,13 +6,7 @@
 // A = max(0, 1 - sum * sigma / r^5 * 5 / s). At r = 1 this is the reference's
 // sigma / r^6 with eps = 0.01; the extra r keeps the result independent of scene scale.
 uniform sampler2D u_depth;  // the pyramid, levels 0..5
-uniform int u_samples;
-uniform float u_radius;
-uniform float u_bias;
-uniform float u_intensity;
-uniform float u_contrast;
-uniform float u_proj_scale;
-uniform float u_turns;
+#include "ao_uniforms.glsl"
 layout(location = 0) out float o_ao;
 
 const int kLogMaxOffset = 3;

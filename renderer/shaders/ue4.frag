@@ -8,12 +8,7 @@
 // (halo guard). A = 1 - (1 - vis^power) * intensity.
 uniform sampler2D u_depth;
 uniform sampler2D u_normal;
-uniform int u_samples;
-uniform float u_radius;
-uniform float u_bias;
-uniform float u_intensity;
-uniform float u_contrast;  // power
-uniform float u_proj_scale;
+#include "ao_uniforms.glsl"  // u_contrast is the power
 layout(location = 0) out float o_ao;
 
 const int kSteps = 3;
