@@ -8,11 +8,13 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <memory>
 
 #include "compare/png_fast.hpp"
+#include "compare/png_layout.hpp"
 
 namespace aosuite {
 namespace {
@@ -117,40 +119,95 @@ void write_file_atomic(const std::filesystem::path& path, std::span<const unsign
   if (::rename(tmp.c_str(), path.c_str()) != 0) abandon("cannot rename into place");
 }
 
+namespace {
+
+// libspng reads only what the rule uses (png_layout.hpp): IHDR, PLTE and tRNS before the
+// image data, the IDAT run and IEND, from the file's bytes in place. Ancillary chunks it
+// would judge by rules of its own never reach it, so both decoders refuse the same files.
+struct Feed {
+  std::span<const std::span<const unsigned char>> pieces;
+  std::size_t piece = 0, offset = 0;
+
+  static int read(spng_ctx*, void* user, void* dest, std::size_t length) {
+    auto& f = *static_cast<Feed*>(user);
+    auto* out = static_cast<unsigned char*>(dest);
+    while (length > 0) {
+      if (f.piece == f.pieces.size()) return SPNG_IO_EOF;
+      const auto& p = f.pieces[f.piece];
+      const std::size_t n = std::min(length, p.size() - f.offset);
+      std::memcpy(out, p.data() + f.offset, n);
+      out += n, length -= n, f.offset += n;
+      if (f.offset == p.size()) ++f.piece, f.offset = 0;
+    }
+    return 0;
+  }
+};
+
+// A libspng decoder positioned after IHDR for a file that passed the rule's walk and stream
+// check.
+class SpngDecoder {
+ public:
+  SpngDecoder(const PngLayout& layout, const std::string& name)
+      : name_(name), feed_{layout.for_decoder}, ctx_(spng_ctx_new(0)) {
+    if (!ctx_) throw FileError(fmt::format("{}: out of memory", name));
+    check(spng_set_png_stream(ctx_.get(), &Feed::read, &feed_), "cannot read");
+    // Bound ancillary chunks too, so a hostile file cannot make us allocate gigabytes.
+    check(spng_set_chunk_limits(ctx_.get(), 64u << 20, 64u << 20), "cannot read");
+    spng_ihdr ihdr{};
+    check(spng_get_ihdr(ctx_.get(), &ihdr), "bad PNG header");
+  }
+  spng_ctx* get() const { return ctx_.get(); }
+  void check(int rc, const char* stage) const {
+    if (rc != 0 && rc != SPNG_EOI) {
+      throw FileError(
+          fmt::format("{}: {} ({}): truncated or corrupt PNG?", name_, stage, spng_strerror(rc)));
+    }
+  }
+
+ private:
+  const std::string& name_;
+  Feed feed_;
+  SpngCtx ctx_;
+};
+
+}  // namespace
+
+RgbaImage decode_png_general(std::span<const unsigned char> png, const std::string& name) {
+  check_signature(png, name);
+  const PngLayout layout = walk_png(png, name);
+  check_png_stream(layout, name);  // before any pixel memory: libspng stops at the last row
+  const SpngDecoder spng(layout, name);
+  std::size_t size = 0;
+  spng.check(spng_decoded_image_size(spng.get(), SPNG_FMT_RGBA8, &size), "cannot decode");
+  RgbaImage rgba(static_cast<int>(layout.width), static_cast<int>(layout.height));
+  spng.check(spng_decode_image(spng.get(), rgba.data(), size, SPNG_FMT_RGBA8, SPNG_DECODE_TRNS),
+             "cannot decode");
+  return rgba;
+}
+
 RgbaImage decode_png(std::span<const unsigned char> png, const std::string& name) {
   check_signature(png, name);
   if (auto fast = decode_png_fast(png, name)) return *std::move(fast);
-  SpngCtx ctx(spng_ctx_new(0));
-  if (!ctx) throw FileError(fmt::format("{}: out of memory", name));
-  auto check = [&](int rc, const char* stage) {
-    if (rc != 0) {
-      throw FileError(
-          fmt::format("{}: {} ({}): truncated or corrupt PNG?", name, stage, spng_strerror(rc)));
-    }
-  };
-  check(spng_set_png_buffer(ctx.get(), png.data(), png.size()), "cannot read");
-  // Bound ancillary chunks too, so a hostile file cannot make us allocate gigabytes.
-  check(spng_set_chunk_limits(ctx.get(), 64u << 20, 64u << 20), "cannot read");
-  spng_ihdr ihdr{};
-  check(spng_get_ihdr(ctx.get(), &ihdr), "bad PNG header");
-  const std::uint64_t pixels = std::uint64_t{ihdr.width} * ihdr.height;
-  if (ihdr.width > 65535 || ihdr.height > 65535 || pixels > kMaxImagePixels) {
-    throw FileError(fmt::format("{}: {}x{} pixels is larger than the {} Mpixel limit", name,
-                                ihdr.width, ihdr.height, kMaxImagePixels >> 20));
-  }
-  std::size_t size = 0;
-  check(spng_decoded_image_size(ctx.get(), SPNG_FMT_RGBA8, &size), "cannot decode");
-  RgbaImage rgba(static_cast<int>(ihdr.width), static_cast<int>(ihdr.height));
-  check(spng_decode_image(ctx.get(), rgba.data(), size, SPNG_FMT_RGBA8, SPNG_DECODE_TRNS),
-        "cannot decode");
-  return rgba;
+  return decode_png_general(png, name);
 }
 
 ImageSize check_png(std::span<const unsigned char> png, const std::string& name) {
   check_signature(png, name);
   if (const auto size = check_png_fast(png, name)) return *size;
-  const RgbaImage img = decode_png(png, name);
-  return {img.width(), img.height()};
+  // The general decoder a row at a time: the image is never held whole.
+  const PngLayout layout = walk_png(png, name);
+  check_png_stream(layout, name);
+  const SpngDecoder spng(layout, name);
+  spng.check(spng_decode_image(spng.get(), nullptr, 0, SPNG_FMT_RGBA8,
+                               SPNG_DECODE_TRNS | SPNG_DECODE_PROGRESSIVE),
+             "cannot decode");
+  std::vector<unsigned char> row(std::size_t{layout.width} * 4);
+  int rc = 0;
+  do {
+    rc = spng_decode_row(spng.get(), row.data(), row.size());
+    spng.check(rc, "cannot decode");
+  } while (rc != SPNG_EOI);
+  return {static_cast<int>(layout.width), static_cast<int>(layout.height)};
 }
 
 RgbaImage read_png(const std::filesystem::path& path) {

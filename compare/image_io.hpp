@@ -48,6 +48,9 @@ void write_file_atomic(const std::filesystem::path& path, std::span<const unsign
 // management is applied. `name` is only used in error messages. (compare/opencv.hpp has
 // the cv::Mat forms.)
 RgbaImage decode_png(std::span<const unsigned char> png, const std::string& name);
+// The decoder for every kind (libspng), which decode_png uses for what the fast one leaves:
+// it accepts and refuses exactly the files the fast one does (png_layout.hpp has the rule).
+RgbaImage decode_png_general(std::span<const unsigned char> png, const std::string& name);
 RgbaImage read_png(const std::filesystem::path& path);
 // Checks that the PNG decodes, as decode_png would, and returns its size; for the common
 // 8-bit RGB(A) kind it skips unfiltering the pixels nobody will look at.
