@@ -2,18 +2,25 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <future>
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
 #include "cli/commands.hpp"
 #include "compare/band_compare.hpp"
 #include "compare/image_io.hpp"
+#include "compare/png_layout.hpp"
 #include "compare/resemble.hpp"
 #include "compare/resemble_json.hpp"
 
@@ -22,13 +29,45 @@ namespace {
 
 namespace rs = aosuite::resemble;
 
+// Options are kept as text and parsed here, so that every bad value gets one accurate line.
 struct CompareArgs {
   std::string a, b, batch, diff, mode = "default", tolerance, error_type = "flat", error_color,
                                  ignore_color, canvas_alpha = "none";
   std::vector<std::string> bounding_boxes, ignored_boxes;
-  double large_image_threshold = 1200, return_early = 0, transparency = 1, threshold = 0;
+  std::string large_image_threshold = "1200", return_early = "0", transparency = "1",
+              threshold = "0", memory_limit = "1024";
   bool json = false;
 };
+
+// A finite decimal number, all of `text`: not "nan" or "inf", nor one a double cannot hold.
+double finite_number(const std::string& text, const std::string& what) {
+  const char* begin = text.c_str();
+  char* end = nullptr;
+  errno = 0;
+  const double v = text.empty() || std::isspace(static_cast<unsigned char>(text[0]))
+                       ? 0
+                       : std::strtod(begin, &end);
+  if (end == nullptr || end == begin || *end != '\0') {
+    throw std::invalid_argument(fmt::format("{} '{}' is not a number", what, text));
+  }
+  if (errno == ERANGE) {
+    throw std::invalid_argument(fmt::format("{} '{}' is out of range ({} for a double)", what, text,
+                                            std::isinf(v) ? "too large" : "too close to zero"));
+  }
+  if (!std::isfinite(v)) {
+    throw std::invalid_argument(fmt::format("{} '{}' is not a finite number", what, text));
+  }
+  return v;
+}
+
+double number_in(const std::string& text, const char* what, double min, double max) {
+  const double v = finite_number(text, what);
+  if (v < min || v > max) {
+    throw std::invalid_argument(
+        fmt::format("{} '{}' is out of range ({} to {})", what, text, min, max));
+  }
+  return v;
+}
 
 std::vector<double> numbers(const std::string& text, std::size_t min, std::size_t max,
                             const char* what) {
@@ -36,18 +75,8 @@ std::vector<double> numbers(const std::string& text, std::size_t min, std::size_
   std::size_t pos = 0;
   while (pos <= text.size()) {
     const std::size_t comma = std::min(text.find(',', pos), text.size());
-    const std::string item = text.substr(pos, comma - pos);
-    std::size_t used = 0;
-    double v = 0;
-    try {
-      v = std::stod(item, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used == 0 || used != item.size()) {
-      throw std::invalid_argument(fmt::format("{} '{}': '{}' is not a number", what, text, item));
-    }
-    out.push_back(v);
+    out.push_back(
+        finite_number(text.substr(pos, comma - pos), fmt::format("{} '{}':", what, text)));
     pos = comma + 1;
   }
   if (out.size() < min || out.size() > max) {
@@ -66,9 +95,29 @@ std::vector<rs::Box> parse_boxes(const std::vector<std::string>& specs, const ch
   return out;
 }
 
+// Resemble's errorType names; Resemble itself treats any other name as flat, but on the
+// command line an unknown one is a typing mistake.
+rs::ErrorType error_type_option(const std::string& name) {
+  for (const char* known :
+       {"flat", "movement", "flatDifferenceIntensity", "movementDifferenceIntensity", "diffOnly"}) {
+    if (name == known) return rs::parse_error_type(name);
+  }
+  throw std::invalid_argument(
+      fmt::format("--error-type '{}' is unknown (expected flat, movement, flatDifferenceIntensity, "
+                  "movementDifferenceIntensity or diffOnly)",
+                  name));
+}
+
 rs::Options options_from(const CompareArgs& args) {
   rs::Options o;
   if (args.mode != "default") o.modes = {rs::parse_mode(args.mode)};
+  // Resemble applies a custom tolerance only together with an ignore mode and silently
+  // ignores it otherwise (resemblejs-semantics.md). Honouring it without a mode would
+  // break parity with Resemble; ignoring it would hide the mistake. So it is an error.
+  if (!args.tolerance.empty() && o.modes.empty()) {
+    throw std::invalid_argument(
+        "--tolerance needs --mode (Resemble applies a custom tolerance only with a mode)");
+  }
   if (!args.tolerance.empty()) {
     nlohmann::json t;
     try {
@@ -78,13 +127,14 @@ rs::Options options_from(const CompareArgs& args) {
     }
     rs::apply_json_options({{"tolerance", t}}, o);
   }
-  o.large_image_threshold = args.large_image_threshold;
-  o.error_type = rs::parse_error_type(args.error_type);
+  o.large_image_threshold =
+      number_in(args.large_image_threshold, "--large-image-threshold", 0, 1e9);
+  o.error_type = error_type_option(args.error_type);
   if (!args.error_color.empty()) {
     const auto c = numbers(args.error_color, 3, 4, "--error-color");
     o.error_color = {c[0], c[1], c[2], c.size() == 4 ? c[3] : 255};
   }
-  o.transparency = args.transparency;
+  o.transparency = finite_number(args.transparency, "--transparency");
   if (!args.bounding_boxes.empty())
     o.bounding_boxes = parse_boxes(args.bounding_boxes, "--bounding-box");
   if (!args.ignored_boxes.empty())
@@ -93,7 +143,7 @@ rs::Options options_from(const CompareArgs& args) {
     const auto c = numbers(args.ignore_color, 3, 4, "--ignore-areas-colored-with");
     o.ignore_areas_colored_with = rs::Color{c[0], c[1], c[2], 255};
   }
-  o.return_early_threshold = args.return_early;
+  o.return_early_threshold = number_in(args.return_early, "--return-early-threshold", 0, 100);
   o.canvas_alpha = parse_canvas_alpha(args.canvas_alpha);
   return o;
 }
@@ -102,9 +152,50 @@ bool passes(const rs::Result& r, double threshold) {
   return r.same_dimensions && r.raw_mismatch_percentage <= threshold;
 }
 
+// What the run may hold: both files, and when they are decoded whole, both images and what
+// the comparison allocates (the diff image and its PNG encoding among it).
+struct Budget {
+  std::uint64_t bytes;
+};
+
+constexpr std::uint64_t kMiB = 1 << 20;
+
+// Refuses, before anything is decoded, a comparison of whole images that would go over the
+// budget, naming the file that takes it over.
+void check_budget(const std::string& a, std::span<const unsigned char> bytes_a,
+                  const std::string& b, std::span<const unsigned char> bytes_b, bool identical,
+                  const rs::Options& o, Budget budget) {
+  const PngHeader ha = peek_png_header(bytes_a, a), hb = peek_png_header(bytes_b, b);
+  const ImageSize sa{int(std::min<std::uint32_t>(ha.width, 1u << 30)),
+                     int(std::min<std::uint32_t>(ha.height, 1u << 30))};
+  const ImageSize sb{int(std::min<std::uint32_t>(hb.width, 1u << 30)),
+                     int(std::min<std::uint32_t>(hb.height, 1u << 30))};
+  const std::uint64_t pixels_a = std::uint64_t(sa.width) * std::uint64_t(sa.height);
+  const std::uint64_t pixels_b = std::uint64_t(sb.width) * std::uint64_t(sb.height);
+  const std::uint64_t need_a = bytes_a.size() + 4 * pixels_a;
+  if (need_a > budget.bytes) {
+    throw FileError(
+        fmt::format("{}: {}x{} pixels need {} MiB decoded, over the {} MiB memory "
+                    "budget (--memory-limit MIB)",
+                    a, ha.width, ha.height, (need_a + kMiB - 1) / kMiB, budget.bytes / kMiB));
+  }
+  std::uint64_t need = need_a + rs::working_bytes(sa, sb, o);
+  if (!identical) need += bytes_b.size() + 4 * pixels_b;
+  if (o.produce_diff) {  // the encoded diff PNG, at most about the diff image's size
+    need += 4 * std::max<std::uint64_t>(sa.width, sb.width) * std::max(sa.height, sb.height);
+  }
+  if (need > budget.bytes) {
+    throw FileError(
+        fmt::format("{}: {}x{} pixels: comparing it with {}{} needs {} MiB, over "
+                    "the {} MiB memory budget (--memory-limit MIB)",
+                    b, hb.width, hb.height, a, o.produce_diff ? " and a diff image" : "",
+                    (need + kMiB - 1) / kMiB, budget.bytes / kMiB));
+  }
+}
+
 rs::Result compare_files(const std::string& a, const std::string& b, rs::Options o,
-                         const std::string& diff_path) {
-  const MappedFile file_a(a), file_b(b);
+                         const std::string& diff_path, Budget budget) {
+  const MappedFile file_a(a, budget.bytes), file_b(b, budget.bytes);
   const auto bytes_a = file_a.bytes(), bytes_b = file_b.bytes();
   const bool identical = std::ranges::equal(bytes_a, bytes_b);
   if (identical && diff_path.empty()) {
@@ -113,6 +204,7 @@ rs::Result compare_files(const std::string& a, const std::string& b, rs::Options
   }
   o.produce_diff = !diff_path.empty();
   if (auto r = compare_png_bands(bytes_a, a, bytes_b, b, o)) return *std::move(r);
+  check_budget(a, bytes_a, b, bytes_b, identical, o, budget);
   RgbaImage img_a, img_b;
   if (identical) {
     img_a = img_b = decode_png(bytes_a, a);  // the diff image still needs the pixels, once
@@ -131,6 +223,11 @@ rs::Result compare_files(const std::string& a, const std::string& b, rs::Options
   return r;
 }
 
+Budget budget_from(const CompareArgs& args) {
+  const double mib = number_in(args.memory_limit, "--memory-limit", 1, 1 << 20);
+  return {static_cast<std::uint64_t>(mib) * kMiB};
+}
+
 void print_human(const std::string& a, const std::string& b, const rs::Result& r, bool pass) {
   fmt::print("{} vs {}: {}% mismatch ({} pixels)", a, b, r.mismatch_percentage, r.mismatch_count);
   if (!r.same_dimensions) {
@@ -144,8 +241,10 @@ void print_human(const std::string& a, const std::string& b, const rs::Result& r
 }
 
 int run_single(const CompareArgs& args) {
-  const rs::Result r = compare_files(args.a, args.b, options_from(args), args.diff);
-  const bool pass = passes(r, args.threshold);
+  const double threshold = number_in(args.threshold, "--threshold", 0, 100);
+  const rs::Options options = options_from(args);
+  const rs::Result r = compare_files(args.a, args.b, options, args.diff, budget_from(args));
+  const bool pass = passes(r, threshold);
   if (args.json) {
     fmt::print("{}\n", rs::result_json(r));
   } else {
@@ -157,13 +256,15 @@ int run_single(const CompareArgs& args) {
 // resemble-oracle's batch format: `A<TAB>B`, `A B`, or a JSON object with a, b, id, diff
 // (or diffRaw) and option keys. Blank lines and # comments are skipped.
 int run_batch(const CompareArgs& args) {
+  const double threshold = number_in(args.threshold, "--threshold", 0, 100);
+  const rs::Options defaults = options_from(args);
+  const Budget budget = budget_from(args);
   std::ifstream file;
   if (args.batch != "-") {
     file.open(args.batch);
     if (!file) throw FileError(fmt::format("{}: cannot open batch file", args.batch));
   }
   std::istream& in = args.batch == "-" ? std::cin : file;
-  const rs::Options defaults = options_from(args);
   int worst = kExitSame;
   std::string line;
   for (int line_no = 1; std::getline(in, line); ++line_no) {
@@ -189,9 +290,9 @@ int run_batch(const CompareArgs& args) {
       }
       if (a.empty() || b.empty()) throw std::invalid_argument("needs both 'a' and 'b'");
       extra["a"] = a, extra["b"] = b;
-      const rs::Result r = compare_files(a, b, o, diff);
+      const rs::Result r = compare_files(a, b, o, diff, budget);
       fmt::print("{}\n", rs::result_json(r, extra));
-      if (!passes(r, args.threshold)) worst = std::max(worst, kExitDifferent);
+      if (!passes(r, threshold)) worst = std::max(worst, kExitDifferent);
     } catch (const std::exception& e) {
       extra["error"] = fmt::format("{}: line {}: {}", args.batch, line_no, e.what());
       fmt::print("{}\n", extra.dump());
@@ -241,10 +342,13 @@ void add_compare_command(CLI::App& app, int& rc) {
   cmd->add_option("--diff", args->diff, "write the diff image (Resemble's raw buffer) as PNG");
   cmd->add_option("--threshold", args->threshold, "largest mismatch % still judged the same")
       ->capture_default_str();
+  cmd->add_option("--memory-limit", args->memory_limit,
+                  "MiB the comparison may hold: files, decoded images, diff image")
+      ->capture_default_str();
   cmd->add_flag("--json", args->json, "print Resemble's result object as one JSON line");
   cmd->callback([args, &rc] {
     if (args->batch.empty() && (args->a.empty() || args->b.empty())) {
-      throw CLI::ValidationError("compare", "needs two images, or --batch FILE");
+      throw CLI::ValidationError("needs two images, or --batch FILE");
     }
     try {
       rc = args->batch.empty() ? run_single(*args) : run_batch(*args);

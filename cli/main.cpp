@@ -1,6 +1,7 @@
 // aosuite: a thin command line over the library; each subcommand lives in its own file.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <array>
 #include <cstring>
 #include <exception>
@@ -52,10 +53,28 @@ int run_gl_command(int argc, char** argv) {
   return entry(argc, argv);
 }
 
+std::string command_list() {
+  std::string out = "compare";
+  for (const GlCommand& c : kGlCommands) out += std::string(", ") + c.name;
+  return out;
+}
+
+// A usage error as one line, "aosuite compare: <problem>", as every other error is.
+int usage_error(const char* command, std::string problem) {
+  std::replace(problem.begin(), problem.end(), '\n', ' ');
+  while (!problem.empty() && problem.back() == ' ') problem.pop_back();
+  fmt::print(stderr, "aosuite{}{}: {}\n", command ? " " : "", command ? command : "", problem);
+  return aosuite::cli::kExitError;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   if (argc > 1 && is_gl_command(argv[1])) return run_gl_command(argc, argv);
+  if (argc > 1 && argv[1][0] != '-' && std::strcmp(argv[1], "compare") != 0) {
+    return usage_error(nullptr, fmt::format("unknown command '{}' (commands: {}; aosuite --help)",
+                                            argv[1], command_list()));
+  }
   CLI::App app{"aosuite: ambient-occlusion rendering and perceptual image regression suite"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "aosuite 0.1.0");
@@ -66,8 +85,13 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
-    return code == 0 ? 0 : aosuite::cli::kExitError;
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+    if (argc < 2) {
+      return usage_error(nullptr,
+                         fmt::format("a command is required ({}; aosuite --help)", command_list()));
+    }
+    const bool compare = std::strcmp(argv[1], "compare") == 0;
+    return usage_error(compare ? "compare" : nullptr, e.what());
   } catch (const std::exception& e) {
     fmt::print(stderr, "aosuite: {}\n", e.what());
     return aosuite::cli::kExitError;

@@ -22,13 +22,21 @@ class FileError : public std::runtime_error {
 // 1 GiB of RGBA8, already far beyond any render this suite makes.
 inline constexpr std::uint64_t kMaxImagePixels = std::uint64_t{1} << 28;
 
-std::vector<unsigned char> read_file(const std::filesystem::path& path);
+// How long reading a named FIFO waits for its first byte before giving up (no writer?);
+// AOSUITE_FIFO_WAIT_MS overrides it.
+inline constexpr int kFifoWaitMs = 5000;
+
+// The whole file: regular files, pipes, FIFOs and devices alike, read to end-of-file.
+// Throws FileError when it is over max_bytes.
+std::vector<unsigned char> read_file(const std::filesystem::path& path,
+                                     std::uint64_t max_bytes = UINT64_MAX);
 
 // A file's bytes mapped read-only: no copy and no zeroed buffer, which for image-sized files
 // is measurable in a command that runs for a few tens of milliseconds.
+// Pipes, FIFOs and devices are read to end-of-file instead (read_file), up to max_bytes.
 class MappedFile {
  public:
-  explicit MappedFile(const std::filesystem::path& path);
+  explicit MappedFile(const std::filesystem::path& path, std::uint64_t max_bytes = UINT64_MAX);
   ~MappedFile();
   MappedFile(const MappedFile&) = delete;
   MappedFile& operator=(const MappedFile&) = delete;
@@ -38,6 +46,7 @@ class MappedFile {
   const unsigned char* data_ = nullptr;
   std::size_t size_ = 0;
   std::vector<unsigned char> fallback_;  // for what cannot be mapped (pipes, empty files)
+  bool mapped_ = true;
 };
 
 // Writes via a temporary file in the same directory and rename(2), so readers only ever see
@@ -48,6 +57,9 @@ void write_file_atomic(const std::filesystem::path& path, std::span<const unsign
 // management is applied. `name` is only used in error messages. (compare/opencv.hpp has
 // the cv::Mat forms.)
 RgbaImage decode_png(std::span<const unsigned char> png, const std::string& name);
+// The decoder for every kind (libspng), which decode_png uses for what the fast one leaves:
+// it accepts and refuses exactly the files the fast one does (png_layout.hpp has the rule).
+RgbaImage decode_png_general(std::span<const unsigned char> png, const std::string& name);
 RgbaImage read_png(const std::filesystem::path& path);
 // Checks that the PNG decodes, as decode_png would, and returns its size; for the common
 // 8-bit RGB(A) kind it skips unfiltering the pixels nobody will look at.

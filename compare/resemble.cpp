@@ -316,6 +316,24 @@ Result compare_identical(ImageSize size) {
   return result_from_tally({}, size, size, std::chrono::steady_clock::now());
 }
 
+std::uint64_t working_bytes(ImageSize a, ImageSize b, const Options& options) {
+  auto px = [](std::uint64_t w, std::uint64_t h) { return w * h; };
+  const std::uint64_t w = std::uint64_t(std::max(a.width, b.width));
+  const std::uint64_t h = std::uint64_t(std::max(a.height, b.height));
+  std::uint64_t bytes = 0;
+  for (const ImageSize& s : {a, b}) {  // as_seen: a canvas model's copy, padding to w x h
+    if (options.canvas_alpha != CanvasAlpha::kNone) bytes += 4 * px(s.width, s.height);
+    if (std::uint64_t(s.width) != w || std::uint64_t(s.height) != h) bytes += 4 * px(w, h);
+  }
+  const double early = options.return_early_threshold;
+  const bool compare_only = early != 0 && !std::isnan(early);
+  if (!count_only_thresholds(options)) {
+    if (options.produce_diff && !compare_only) bytes += 4 * px(w, h);        // the diff image
+    if (compare_only && !resolve(options).ignore_colors) bytes += px(w, h);  // the mask
+  }
+  return bytes;
+}
+
 Result compare(RgbaView a, RgbaView b, const Options& options) {
   const auto start = std::chrono::steady_clock::now();
   const Settings s = resolve(options);

@@ -95,6 +95,11 @@ struct Result {
 // would have made of translucent pixels).
 Result compare(RgbaView a, RgbaView b, const Options& options);
 
+// The bytes compare() allocates for images of sizes a and b beyond the images themselves
+// (canvas-model copies, padding to a common size, the diff image, the early-return mask):
+// what a memory budget must allow before anything is decoded.
+std::uint64_t working_bytes(ImageSize a, ImageSize b, const Options& options);
+
 // The per-channel differences at which a pixel mismatches when these thresholds alone decide
 // (no antialiasing or colours mode, no areas, no diff image, no early return): then a
 // comparison of the images as seen (after the canvas model) is count_mismatches() and

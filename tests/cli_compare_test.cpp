@@ -1,7 +1,11 @@
 // `aosuite compare` as a user runs it: exit codes, messages, and nothing written on error.
 #include <gtest/gtest.h>
+#include <sys/resource.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
+#include <chrono>
 #include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -19,6 +23,87 @@ using test::Outcome;
 
 Outcome run(const test::TempDir& dir, const std::string& args) {
   return test::run_shell(std::string(AOSUITE_BIN) + " compare " + args, dir.path());
+}
+
+// A shell command's exit status, stderr, peak resident memory and wall time, measured on that
+// process alone (wait4). Commands end by exec-ing aosuite, so the peak is aosuite's.
+struct Measured {
+  int rc;
+  std::string err;
+  long max_rss_mb;
+  double seconds;
+};
+
+Measured run_measured(const test::TempDir& dir, const std::string& command) {
+  const std::string err_file = (dir / "measured_stderr.txt").string();
+  const auto start = std::chrono::steady_clock::now();
+  const pid_t pid = fork();
+  if (pid == 0) {
+    const std::string cmd = "exec 2>'" + err_file + "'; " + command;
+    execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  int status = 0;
+  rusage usage{};
+  wait4(pid, &status, 0, &usage);
+  std::stringstream err;
+  err << std::ifstream(err_file).rdbuf();
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, err.str(), usage.ru_maxrss / 1024,
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()};
+}
+
+// Deflate's fixed-Huffman block, written a bit at a time (least significant first).
+class BitWriter {
+ public:
+  void bits(std::uint32_t value, int n) {  // extra bits and header fields
+    for (int i = 0; i < n; ++i) put((value >> i) & 1);
+  }
+  void code(std::uint32_t code, int n) {  // Huffman codes go most significant bit first
+    for (int i = n - 1; i >= 0; --i) put((code >> i) & 1);
+  }
+  test::Bytes finish() {
+    if (used_) out_.push_back(acc_);
+    return std::move(out_);
+  }
+
+ private:
+  void put(std::uint32_t bit) {
+    acc_ = static_cast<unsigned char>(acc_ | bit << used_);
+    if (++used_ == 8) out_.push_back(acc_), acc_ = 0, used_ = 0;
+  }
+  test::Bytes out_;
+  unsigned char acc_ = 0;
+  int used_ = 0;
+};
+
+// A zlib stream of n zero bytes, n > 258: a literal 0 then copies of 258 bytes at distance 1,
+// 13 bits each, so 1 GiB takes about 6.5 MB (zlib would take seconds to write it).
+test::Bytes zeros_stream(std::uint64_t n) {
+  BitWriter w;
+  w.bits(1, 1), w.bits(1, 2);  // the final block, fixed Huffman codes
+  w.code(0x30, 8);             // literal 0
+  std::uint64_t left = n - 1;
+  auto copy = [&](std::uint32_t len) {  // lengths 3..10 are codes 257..264, 258 is 285
+    if (len == 258) {
+      w.code(0xc5, 8);
+    } else {
+      w.code(len - 3 + 1, 7);
+    }
+    w.code(0, 5);  // distance 1
+  };
+  for (; left >= 258 + 3; left -= 258) copy(258);
+  while (left >= 3) {
+    const std::uint32_t len = static_cast<std::uint32_t>(std::min<std::uint64_t>(left, 10));
+    copy(len);
+    left -= len;
+  }
+  for (; left > 0; --left) w.code(0x30, 8);
+  w.code(0, 7);  // end of block
+  test::Bytes z = {0x78, 0x01};
+  const test::Bytes body = w.finish();
+  z.insert(z.end(), body.begin(), body.end());
+  test::put_u32(z, static_cast<std::uint32_t>((n % 65521) << 16 | 1));  // Adler-32 of zeros
+  return z;
 }
 
 class CliCompare : public ::testing::Test {
@@ -88,6 +173,139 @@ TEST_F(CliCompare, BadInputIsExitTwoWithOneLineAndNothingWritten) {
   }
   EXPECT_EQ(run(dir_, path("a.png") + " " + path("b.png") + " --mode sideways").rc, 2);
   EXPECT_EQ(run(dir_, path("a.png")).rc, 2);
+}
+
+// Every bad option: exit 2, one line "aosuite compare: <problem>" naming it, nothing written.
+TEST_F(CliCompare, BadOptionsAreOneLineAndExitTwo) {
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"--threshold nan", "--threshold 'nan'"},
+      {"--threshold -1", "--threshold '-1' is out of range"},
+      {"--threshold 101", "--threshold '101' is out of range"},
+      {"--threshold 1e-320", "--threshold '1e-320' is out of range"},
+      {"--threshold 1e999", "--threshold '1e999' is out of range"},
+      {"--threshold 5x", "--threshold '5x' is not a number"},
+      {"--error-type bogus", "--error-type 'bogus' is unknown"},
+      {R"(--tolerance '{"red":4}')", "--tolerance needs --mode"},
+      {R"(--mode default --tolerance '{"red":4}')", "--tolerance needs --mode"},
+      {"--transparency inf", "--transparency 'inf'"},
+      {"--return-early-threshold nan", "--return-early-threshold 'nan'"},
+      {"--bounding-box 1,2,nan,4", "'nan'"},
+      {"--error-color 1,2,1e999", "out of range"},
+      {"--memory-limit 0", "--memory-limit '0' is out of range"},
+      {"--mode sideways", "unknown mode 'sideways'"},
+      {"--no-such-option", "--no-such-option"},
+  };
+  for (const auto& [args, want] : cases) {
+    const Outcome r =
+        run(dir_, path("a.png") + " " + path("b.png") + " --diff " + path("out.png") + " " + args);
+    EXPECT_EQ(r.rc, 2) << args;
+    EXPECT_EQ(r.err.rfind("aosuite compare: ", 0), 0u) << args << ": " << r.err;
+    EXPECT_NE(r.err.find(want), std::string::npos) << args << ": " << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << ": " << r.err;
+    EXPECT_TRUE(r.out.empty()) << args;
+    EXPECT_FALSE(std::filesystem::exists(dir_ / "out.png")) << args;
+  }
+  // Without a second image: a usage error, one line.
+  const Outcome one = run(dir_, path("a.png"));
+  EXPECT_EQ(one.rc, 2);
+  EXPECT_EQ(one.err, "aosuite compare: needs two images, or --batch FILE\n");
+  // With a mode the tolerance is Resemble's: colour differences under it match.
+  EXPECT_EQ(run(dir_, path("a.png") + " " + path("b.png") +
+                          R"( --mode nothing --tolerance '{"red":255}')")
+                .rc,
+            0);
+}
+
+TEST_F(CliCompare, UnknownCommandIsNamed) {
+  for (const char* args : {"foo", "foo a.png b.png", ""}) {
+    const Outcome r = test::run_shell(std::string(AOSUITE_BIN) + " " + args, dir_.path());
+    EXPECT_EQ(r.rc, 2) << args;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << ": " << r.err;
+    EXPECT_NE(r.err.find("compare, render"), std::string::npos) << args << ": " << r.err;
+    if (*args) {
+      EXPECT_NE(r.err.find("unknown command 'foo'"), std::string::npos) << r.err;
+    }
+  }
+}
+
+// Pipes have no size (st_size 0): they are read to end-of-file.
+TEST_F(CliCompare, ReadsPipesAndFifos) {
+  const std::string bin = AOSUITE_BIN;
+  EXPECT_EQ(test::run_shell(
+                "cat " + path("a.png") + " | " + bin + " compare /dev/stdin " + path("a_copy.png"),
+                dir_.path())
+                .rc,
+            0);
+  const Outcome sub = test::run_shell(
+      "bash -c '" + bin + " compare <(cat " + path("a.png") + ") " + path("b.png") + " --json'",
+      dir_.path());
+  EXPECT_EQ(sub.rc, 1) << sub.err;
+  EXPECT_NE(sub.out.find(R"("misMatchPercentage":"0.17")"), std::string::npos) << sub.out;
+  // A named FIFO whose writer is already waiting in its open.
+  ASSERT_EQ(::mkfifo(path("fifo").c_str(), 0600), 0);
+  EXPECT_EQ(test::run_shell("(cat " + path("a.png") + " > " + path("fifo") + " &); timeout 60 " +
+                                bin + " compare " + path("fifo") + " " + path("a_copy.png"),
+                            dir_.path())
+                .rc,
+            0);
+}
+
+// A FIFO nobody writes to: opening it would block forever; it waits a bounded time for data.
+TEST_F(CliCompare, FifoWithoutWriterIsAnErrorNotAHang) {
+  ASSERT_EQ(::mkfifo(path("lonely").c_str(), 0600), 0);
+  const auto start = std::chrono::steady_clock::now();
+  const Outcome r = test::run_shell("AOSUITE_FIFO_WAIT_MS=300 timeout 20 " +
+                                        std::string(AOSUITE_BIN) + " compare " + path("lonely") +
+                                        " " + path("a.png") + " --diff " + path("out.png"),
+                                    dir_.path());
+  EXPECT_EQ(r.rc, 2) << "124 is the timeout: it hung";
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 10);
+  EXPECT_NE(r.err.find(path("lonely") + ": a FIFO with no data"), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "out.png"));
+}
+
+// A file that claims 16384x16384 pixels with under a kilobyte of data fails at once, without
+// allocating the gigabyte its header asks for.
+TEST_F(CliCompare, TinyFileClaimingAHugeImageFailsWithoutAllocating) {
+  test::write_bytes(
+      dir_ / "claims.png",
+      test::png_with_idat(16384, 16384, 8, 6, test::zlib_compress(test::Bytes(800, 0))));
+  for (const char* mode : {"", " --mode antialiasing --diff "}) {
+    const Measured m = run_measured(
+        dir_, std::string("ulimit -v 2000000; exec ") + AOSUITE_BIN + " compare " + path("a.png") +
+                  " " + path("claims.png") + mode + (*mode ? path("out.png") : std::string()));
+    EXPECT_EQ(m.rc, 2) << mode << m.err;
+    EXPECT_NE(m.err.find("claims.png"), std::string::npos) << m.err;
+    EXPECT_LT(m.max_rss_mb, 100) << mode;
+    EXPECT_LT(m.seconds, 5) << mode;
+    EXPECT_FALSE(std::filesystem::exists(dir_ / "out.png"));
+  }
+}
+
+// A zlib bomb: 6.5 MB that really inflates to 16384x16384 RGBA (1 GiB). Decoding it whole
+// with a diff image would take over 3 GiB; the memory budget refuses it before decoding.
+TEST_F(CliCompare, MemoryBudgetRefusesBeforeAllocating) {
+  const std::uint64_t raw = std::uint64_t{16384} * (1 + 16384 * 4);
+  test::write_bytes(dir_ / "bomb.png", test::png_with_idat(16384, 16384, 8, 6, zeros_stream(raw)));
+  const Measured m = run_measured(dir_, std::string("ulimit -v 2000000; exec ") + AOSUITE_BIN +
+                                            " compare " + path("a.png") + " " + path("bomb.png") +
+                                            " --mode antialiasing --diff " + path("out.png"));
+  EXPECT_EQ(m.rc, 2) << m.err;
+  EXPECT_NE(m.err.find(path("bomb.png") + ": 16384x16384 pixels"), std::string::npos) << m.err;
+  EXPECT_NE(m.err.find("over the 1024 MiB memory budget"), std::string::npos) << m.err;
+  EXPECT_EQ(std::count(m.err.begin(), m.err.end(), '\n'), 1) << m.err;
+  EXPECT_LT(m.max_rss_mb, 100);
+  EXPECT_LT(m.seconds, 5);
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "out.png"));
+  // Small images fit a small budget; byte-identical files need no whole image.
+  const Outcome small = run(
+      dir_, path("a.png") + " " + path("b.png") + " --memory-limit 1 --diff " + path("out.png"));
+  EXPECT_EQ(small.rc, 1) << small.err;  // 20x30 pixels fit in 1 MiB
+  const Measured whole = run_measured(dir_, std::string("exec ") + AOSUITE_BIN + " compare " +
+                                                path("bomb.png") + " " + path("bomb.png"));
+  EXPECT_EQ(whole.rc, 0) << whole.err;  // identical files: checked a band at a time
+  EXPECT_LT(whole.max_rss_mb, 100);
 }
 
 TEST_F(CliCompare, BatchReadsOracleFormat) {
