@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "cli/commands.hpp"
+#include "cli/usage_error.hpp"
 #include "renderer/gl/gl_context.hpp"
 
 namespace {
@@ -45,8 +46,8 @@ extern "C" int aosuite_gl_main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
-    return code == 0 ? 0 : aosuite::cli::kExitError;
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help
+    return aosuite::cli::usage_error(argc > 1 ? argv[1] : nullptr, e.what());
   } catch (...) {
     // The launcher has its own C++ runtime (cli/CMakeLists.txt): nothing may unwind into it.
     std::fputs("aosuite: unexpected error\n", stderr);

@@ -1,7 +1,6 @@
 // aosuite: a thin command line over the library; each subcommand lives in its own file.
 #include <fmt/format.h>
 
-#include <algorithm>
 #include <array>
 #include <cstring>
 #include <exception>
@@ -9,6 +8,7 @@
 
 #include "cli/commands.hpp"
 #include "cli/sibling_library.hpp"
+#include "cli/usage_error.hpp"
 #include "renderer/huge_page_malloc.hpp"
 
 namespace {
@@ -59,21 +59,14 @@ std::string command_list() {
   return out;
 }
 
-// A usage error as one line, "aosuite compare: <problem>", as every other error is.
-int usage_error(const char* command, std::string problem) {
-  std::replace(problem.begin(), problem.end(), '\n', ' ');
-  while (!problem.empty() && problem.back() == ' ') problem.pop_back();
-  fmt::print(stderr, "aosuite{}{}: {}\n", command ? " " : "", command ? command : "", problem);
-  return aosuite::cli::kExitError;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
   if (argc > 1 && is_gl_command(argv[1])) return run_gl_command(argc, argv);
   if (argc > 1 && argv[1][0] != '-' && std::strcmp(argv[1], "compare") != 0) {
-    return usage_error(nullptr, fmt::format("unknown command '{}' (commands: {}; aosuite --help)",
-                                            argv[1], command_list()));
+    return aosuite::cli::usage_error(
+        nullptr, fmt::format("unknown command '{}' (commands: {}; aosuite --help)", argv[1],
+                             command_list()));
   }
   CLI::App app{"aosuite: ambient-occlusion rendering and perceptual image regression suite"};
   app.require_subcommand(1);
@@ -87,11 +80,11 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
     if (argc < 2) {
-      return usage_error(nullptr,
-                         fmt::format("a command is required ({}; aosuite --help)", command_list()));
+      return aosuite::cli::usage_error(
+          nullptr, fmt::format("a command is required ({}; aosuite --help)", command_list()));
     }
     const bool compare = std::strcmp(argv[1], "compare") == 0;
-    return usage_error(compare ? "compare" : nullptr, e.what());
+    return aosuite::cli::usage_error(compare ? "compare" : nullptr, e.what());
   } catch (const std::exception& e) {
     fmt::print(stderr, "aosuite: {}\n", e.what());
     return aosuite::cli::kExitError;

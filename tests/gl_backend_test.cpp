@@ -90,6 +90,7 @@ TEST(GlBackend, BadChoicesExitTwoInOneLineAndWriteNothing) {
            Bad{"AOSUITE_GL_DEVICE=999 " + kBin + render, "EGL device 999 does not exist"},
            Bad{"AOSUITE_GL_DEVICE=x " + kBin + render, "AOSUITE_GL_DEVICE: 'x'"},
            Bad{"AOSUITE_GL=vulkan " + kBin + render, "unknown GL backend 'vulkan'"},
+           Bad{kBin + render + " --gl vulkan", "aosuite render: --gl: vulkan not in"},
            Bad{kBin + render + " --gl osmesa --gl-device 0", "OSMesa has none"},
            // No EGL driver at all (GLVND finds no vendor library), and one below OpenGL 4.5.
            Bad{"__EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent.json " + kBin + render + " --gl egl",
