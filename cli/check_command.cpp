@@ -2,6 +2,7 @@
 #include <fmt/format.h>
 
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <set>
 
 #include "cli/commands.hpp"
@@ -18,13 +19,22 @@ namespace fs = std::filesystem;
 namespace hs = aosuite::harness;
 
 struct HarnessArgs {
-  std::string suite, filter, shard, report, junit, tag, goldens;
-  int jobs = 1;
-  bool diff_all = false, no_reuse = false, platform = false, list = false;
+  std::string suite, filter, shard, report, junit, tag, goldens, actual, expected;
+  int jobs = 1, retries = 0;
+  double max_mismatch = 0;
+  bool diff_all = false, no_reuse = false, platform = false, list = false, json = false;
+  bool force = false, from_report = false, failed = false, single_file = false;
 };
 
 void add_selection_options(CLI::App* cmd, HarnessArgs& a) {
-  cmd->add_option("suite", a.suite, "suite file, e.g. suites/default.toml")->required();
+  cmd->add_option("suite", a.suite, "suite file, e.g. suites/default.toml");
+  cmd->add_option("--actual", a.actual,
+                  "folder mode, without a suite: the new images (PNG files, by relative path)");
+  cmd->add_option("--expected", a.expected,
+                  "folder mode: the accepted images, paired with --actual by relative path");
+  cmd->add_option("--max-mismatch", a.max_mismatch,
+                  "folder mode: allowed Resemble mismatch % per image (default 0)")
+      ->check(CLI::Range(0.0, 100.0));
   cmd->add_option("--filter", a.filter,
                   "only cases whose id contains a match of this regular expression (anchor it, "
                   "'^id$', for exactly one case)");
@@ -41,6 +51,20 @@ void add_selection_options(CLI::App* cmd, HarnessArgs& a) {
 }
 
 hs::Suite load(const HarnessArgs& a) {
+  const bool folders = !a.actual.empty() || !a.expected.empty();
+  if (folders && (a.actual.empty() || a.expected.empty())) {
+    throw std::invalid_argument("folder mode needs both --actual DIR and --expected DIR");
+  }
+  if (folders == !a.suite.empty()) {
+    throw std::invalid_argument(folders ? "give a suite file or --actual/--expected, not both"
+                                        : "give a suite file, or --actual DIR --expected DIR");
+  }
+  if (folders) {
+    if (!a.goldens.empty()) throw std::invalid_argument("folder mode takes no --goldens");
+    hs::Tolerance t;
+    t.max_mismatch_percent = a.max_mismatch;
+    return hs::folder_suite(a.actual, a.expected, t);
+  }
   hs::Suite suite = hs::load_suite(a.suite);
   if (!a.goldens.empty()) suite.goldens = a.goldens, suite.goldens_given = true;
   return suite;
@@ -54,6 +78,7 @@ hs::RunOptions run_options(const hs::Suite& suite, const HarnessArgs& a) {
   o.report_dir = a.report.empty() ? fs::path("reports") / suite.name : fs::path(a.report);
   o.diff_all = a.diff_all;
   o.reuse = !a.no_reuse;
+  o.retries = a.retries;
   return o;
 }
 
@@ -64,9 +89,11 @@ void print_progress(const hs::CaseResult& r, int done, int total) {
                           v.identical ? " (identical)" : "");
   }
   if (r.status != hs::Status::kPass && !r.message.empty()) detail += "  " + r.message;
-  fmt::print("[{:>{}}/{}] {:<5} {}{}  {:.2f} s{}\n", done, fmt::formatted_size("{}", total), total,
-             hs::status_name(r.status), r.id, hs::printable(detail), r.seconds,
-             r.reused ? " (unchanged, reused)" : "");
+  if (r.kind == "folder") detail = "  " + r.source + detail;
+  fmt::print("[{:>{}}/{}] {:<5} {}{}  {:.2f} s{}{}\n", done, fmt::formatted_size("{}", total),
+             total, hs::status_name(r.status), r.id, hs::printable(detail), r.seconds,
+             r.reused ? " (unchanged, reused)" : "",
+             r.attempts > 1 ? fmt::format(" ({} attempts)", r.attempts) : "");
   std::fflush(stdout);
 }
 
@@ -79,21 +106,64 @@ void acknowledge_sharding() {
   }
 }
 
-int finish(const hs::RunResults& run, const fs::path& report_dir, const std::string& junit) {
-  hs::write_html_report(run, report_dir);
+struct Output {
+  bool json = false;
+  bool single_file = false;
+};
+
+int finish(const hs::RunResults& run, const fs::path& report_dir, const std::string& junit,
+           const Output& out) {
+  hs::write_html_report(run, report_dir, {.single_file = out.single_file});
   if (!junit.empty()) hs::write_junit(run, junit);
   const hs::Counts n = hs::count(run);
-  fmt::print("{} cases: {} passed, {} failed, {} new, {} errors. Report: {}\n", run.cases.size(),
-             n.pass, n.fail, n.fresh, n.error, hs::printable((report_dir / "index.html").string()));
   std::vector<std::string> to_accept;
+  for (const hs::CaseResult& c : run.cases) {
+    if (!c.bless_command.empty()) to_accept.push_back(c.id);
+  }
+  const std::string accept_all = to_accept.empty() || run.bless_prefix.empty()
+                                     ? std::string()
+                                     : hs::bless_command(run.bless_prefix, to_accept);
+  const std::string report = (report_dir / "index.html").string();
+  if (out.json) {
+    const nlohmann::json summary = {
+        {"type", "summary"},
+        {"suite", run.suite},
+        {"cases", run.cases.size()},
+        {"passed", n.pass},
+        {"failed", n.fail},
+        {"new", n.fresh},
+        {"errors", n.error},
+        {"flaky", n.flaky},
+        {"exit_status", hs::exit_code(n)},
+        {"report", hs::printable(report)},
+        {"results", hs::printable((report_dir / "results.json").string())},
+        {"bless_command", hs::printable(accept_all)},
+        {"approve_failed", to_accept.empty()
+                               ? std::string()
+                               : hs::printable(run.bless_prefix + " --failed --report " +
+                                               hs::shell_quote(report_dir.string()))}};
+    fmt::print("{}\n", summary.dump());
+    std::fflush(stdout);
+    return hs::exit_code(n);
+  }
+  const std::string flaky = n.flaky ? fmt::format(", {} flaky", n.flaky) : "";
+  if (!run.cases.empty() && run.cases.front().kind == "folder") {
+    int deleted = 0;
+    for (const hs::CaseResult& c : run.cases) deleted += c.message.starts_with("deleted:");
+    fmt::print("{} images: {} unchanged, {} changed, {} new, {} deleted, {} errors{}. Report: {}\n",
+               run.cases.size(), n.pass, n.fail - deleted, n.fresh, deleted, n.error, flaky,
+               hs::printable(report));
+  } else {
+    fmt::print("{} cases: {} passed, {} failed, {} new, {} errors{}. Report: {}\n",
+               run.cases.size(), n.pass, n.fail, n.fresh, n.error, flaky, hs::printable(report));
+  }
   for (const hs::CaseResult& c : run.cases) {
     if (c.bless_command.empty()) continue;
     fmt::print("  to accept {}: {}\n", c.id, hs::printable(c.bless_command));
-    to_accept.push_back(c.id);
   }
-  if (to_accept.size() > 1 && !run.bless_prefix.empty()) {
+  if (to_accept.size() > 1 && !accept_all.empty()) {
     fmt::print("  to accept all {} failing and new cases: {}\n", to_accept.size(),
-               hs::printable(hs::bless_command(run.bless_prefix, to_accept)));
+               hs::printable(accept_all));
   }
   std::fflush(stdout);
   return hs::exit_code(n);
@@ -111,28 +181,53 @@ int run_check(const HarnessArgs& a) {
     for (const hs::Case* c : cases) fmt::print("{}\n", c->id);
     return kExitSame;
   }
-  o.progress = print_progress;
+  if (a.json) {
+    // One JSON object per line, per case as it finishes, then the summary.
+    o.progress = [](const hs::CaseResult& r, int, int) {
+      nlohmann::json j = hs::to_json(r);
+      j["type"] = "case";
+      fmt::print("{}\n", j.dump());
+      std::fflush(stdout);
+    };
+  } else {
+    o.progress = print_progress;
+  }
   acknowledge_sharding();
   const hs::RunResults run = hs::check(suite, o);
-  return finish(run, o.report_dir, a.junit);
+  return finish(run, o.report_dir, a.junit, {.json = a.json, .single_file = a.single_file});
 }
 
 int run_bless(const HarnessArgs& a) {
   const hs::Suite suite = load(a);
-  hs::BlessOptions b{.run = run_options(suite, a), .platform = a.platform, .tag = a.tag};
+  hs::BlessOptions b{.run = run_options(suite, a),
+                     .platform = a.platform,
+                     .tag = a.tag,
+                     .force = a.force,
+                     .from_report = a.from_report,
+                     .failed = a.failed};
   // One line per case as it finishes, flushed: a redirected log shows what was written even
   // when bless is killed.
   b.run.progress = [](const hs::CaseResult& r, int done, int total) {
     fmt::print("[{}/{}] {} {}: {}\n", done, total,
-               r.status == hs::Status::kPass ? "BLESSED" : "NOT BLESSED", r.id,
-               hs::printable(r.message));
+               r.kept                          ? "KEPT"
+               : r.status == hs::Status::kPass ? "BLESSED"
+                                               : "NOT BLESSED",
+               r.id, hs::printable(r.message));
     std::fflush(stdout);
   };
   const hs::RunResults run = hs::bless(suite, b);
+  if (run.cases.empty()) {
+    fmt::print("nothing to accept: no case failed or is new in {}\n",
+               hs::printable((b.run.report_dir / "results.json").string()));
+    return kExitSame;
+  }
   const hs::Counts n = hs::count(run);
+  int kept = 0;
+  for (const hs::CaseResult& c : run.cases) kept += c.kept;
   fmt::print(
-      "{} of {} cases blessed into {}{}\n", n.pass, run.cases.size(),
+      "{} of {} cases blessed into {}{}{}\n", n.pass - kept, run.cases.size(),
       hs::printable(suite.goldens.string()),
+      kept ? fmt::format("; {} passing kept as they were (--force rewrites them)", kept) : "",
       n.error ? fmt::format("; {} not blessed, their goldens as they were (reasons above)", n.error)
               : "");
   std::fflush(stdout);
@@ -184,7 +279,7 @@ int run_merge(const std::string& out, const std::vector<std::string>& shards,
     }
   }
   hs::write_results(out, merged);
-  return finish(merged, out, junit);
+  return finish(merged, out, junit, {});
 }
 
 // Runs `f`, showing an error's bytes that are not printable UTF-8 escaped (a path may hold any).
@@ -209,6 +304,13 @@ void add_check_command(CLI::App& app, int& rc) {
   cmd->add_option("--junit", a->junit, "also write JUnit XML here");
   cmd->add_flag("--diff-all", a->diff_all, "write diff images for passing cases too");
   cmd->add_flag("--list", a->list, "print the selected case ids and stop");
+  cmd->add_option("--retries", a->retries,
+                  "run a failing case up to N more times; one that then passes is FLAKY")
+      ->check(CLI::Range(0, 100));
+  cmd->add_flag("--json", a->json,
+                "print one JSON object per case as it finishes, then a summary object");
+  cmd->add_flag("--single-file", a->single_file,
+                "embed the images in index.html (one file to mail; for small suites)");
   guarded(cmd, rc, "check", [a] { return escaped_errors([&] { return run_check(*a); }); });
 }
 
@@ -220,6 +322,11 @@ void add_bless_command(CLI::App& app, int& rc) {
   cmd->add_flag("--platform", a->platform,
                 "write goldens for this GL platform only (goldens/<suite>/<case>/<platform>/)");
   cmd->add_option("--variant", a->tag, "add an accepted variant <image>~<tag>.png instead");
+  cmd->add_flag("--force", a->force, "rewrite the goldens of cases that pass too");
+  cmd->add_flag("--from-report", a->from_report,
+                "accept the last report's images (--report DIR) instead of rendering");
+  cmd->add_flag("--failed", a->failed,
+                "accept every FAIL and NEW case of the last report, from its images");
   guarded(cmd, rc, "bless", [a] { return escaped_errors([&] { return run_bless(*a); }); });
 }
 

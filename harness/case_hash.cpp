@@ -51,6 +51,19 @@ std::string input_hash(const Case& c, const std::string& gl_description) {
   return h.hex();
 }
 
+std::string image_input_hash(const Case& c) {
+  const ImageSource& src = *c.source;
+  Hasher h;
+  h.add(std::string_view("image case 1")).add(c.id).add(c.width).add(c.height);
+  h.add(c.values.dump());
+  h.add(src.command.size());
+  for (const std::string& arg : src.command) h.add(arg);
+  for (const std::string& out : src.outputs) h.add(out);
+  for (const fs::path& in : src.inputs) h.add(in.string()).add_file(in);
+  for (const fs::path& f : src.files) h.add(f.string()).add_file(f);
+  return h.hex();
+}
+
 std::string judge_hash(const Case& c, const std::string& input,
                        const std::vector<std::vector<fs::path>>& goldens) {
   Hasher h;

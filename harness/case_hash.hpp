@@ -14,6 +14,10 @@ namespace aosuite::harness {
 // views, the view, technique, parameters, size and the GL implementation.
 std::string input_hash(const Case& c, const std::string& gl_description);
 
+// What an image case's images depend on: its command (before {out} is filled in), fields and
+// params, and the bytes of the files it declares as inputs; for files on disk, their bytes.
+std::string image_input_hash(const Case& c);
+
 // Everything a verdict depends on besides the render: the accepted goldens' bytes and names,
 // the tolerance and its mask image.
 std::string judge_hash(const Case& c, const std::string& input_hash,

@@ -52,6 +52,18 @@ inline std::string printable(std::string_view s) {
   return out;
 }
 
+// printable() line by line: text of several lines (a command's stderr) keeps its line breaks.
+inline std::string printable_lines(std::string_view s) {
+  std::string out;
+  for (std::size_t at = 0; at <= s.size();) {
+    const std::size_t nl = std::min(s.find('\n', at), s.size());
+    out += printable(s.substr(at, nl - at));
+    if (nl < s.size()) out += '\n';
+    at = nl + 1;
+  }
+  return out;
+}
+
 // printable(s) with the markup characters escaped.
 inline std::string escape_markup(std::string_view text) {
   const std::string s = printable(text);

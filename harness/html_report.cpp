@@ -71,6 +71,18 @@ std::string file_of(const CaseResult& c, const std::string& role) {
   return it == c.files.end() ? std::string() : it->second;
 }
 
+// escape_markup() line by line, keeping the line breaks (for <pre>).
+std::string escape_lines(std::string_view text) {
+  std::string out;
+  for (std::size_t at = 0; at <= text.size();) {
+    const std::size_t nl = std::min(text.find('\n', at), text.size());
+    out += escape_markup(text.substr(at, nl - at));
+    if (nl < text.size()) out += '\n';
+    at = nl + 1;
+  }
+  return out;
+}
+
 std::string status_cell(Status s) {
   return fmt::format(R"(<span class="{0}">{0}</span>)", status_name(s));
 }
@@ -177,6 +189,15 @@ std::string case_section(const CaseResult& c, Pictures& pics) {
     h += "<p>Accept this render as the golden: <code>" + escape_markup(c.bless_command) +
          "</code></p>\n";
   }
+  if (c.exit_status >= 0 || !c.source.empty()) {
+    h += fmt::format("<p>{} <code>{}</code>{}</p>\n", c.kind == "command" ? "Command" : "Source",
+                     escape_markup(c.source),
+                     c.exit_status >= 0 ? fmt::format(", exit status {}", c.exit_status) : "");
+  }
+  if (!c.command_stderr.empty()) {
+    h += "<details><summary>stderr</summary><pre>" + escape_lines(c.command_stderr) +
+         "</pre></details>\n";
+  }
   for (const ImageVerdict& v : c.images) h += image_comparison(c, v, pics);
   h += "<details><summary>no AO / with AO / AO only, parameters, timings</summary><div "
        "class=images>";
@@ -184,7 +205,8 @@ std::string case_section(const CaseResult& c, Pictures& pics) {
   h += figure(pics.img(file_of(c, "with_ao"), "", "with AO"), "with AO");
   h += figure(pics.img(file_of(c, "ao_only"), "", "AO only"), "AO only");
   h += "</div>";
-  std::map<std::string, std::string> about = c.params;
+  std::map<std::string, std::string> about;
+  for (const auto& [k, v] : c.params) about[k] = v.is_string() ? v.get<std::string>() : v.dump();
   about["scene / view / technique"] = c.scene + " / " + c.view + " / " + c.technique;
   about["size"] = fmt::format("{}x{}", c.width, c.height);
   about["tolerance"] =
@@ -225,7 +247,8 @@ std::string sweep_link(const fs::path& report_dir) {
 
 }  // namespace
 
-void write_html_report(const RunResults& run, const fs::path& report_dir) {
+void write_html_report(const RunResults& run, const fs::path& report_dir,
+                       const ReportOptions& /*options*/) {
   Pictures pics(report_dir / "cases");
   const Counts n = count(run);
   std::string body = fmt::format(

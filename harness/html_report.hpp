@@ -10,6 +10,10 @@ namespace aosuite::harness {
 
 // Writes `report_dir`/index.html from `run`, embedding the pictures its cases name (paths
 // relative to `report_dir`/cases). Throws naming the file if it cannot read or write.
-void write_html_report(const RunResults& run, const std::filesystem::path& report_dir);
+struct ReportOptions {
+  bool single_file = false;  // embed every image (base64) instead of linking the files beside
+};
+void write_html_report(const RunResults& run, const std::filesystem::path& report_dir,
+                       const ReportOptions& options = {});
 
 }  // namespace aosuite::harness

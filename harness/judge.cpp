@@ -21,12 +21,14 @@ std::string_view status_name(Status s) {
       return "NEW";
     case Status::kError:
       return "ERROR";
+    case Status::kFlaky:
+      return "FLAKY";
   }
   return "ERROR";
 }
 
 Status parse_status(std::string_view name) {
-  for (Status s : {Status::kPass, Status::kFail, Status::kNew, Status::kError}) {
+  for (Status s : {Status::kPass, Status::kFail, Status::kNew, Status::kError, Status::kFlaky}) {
     if (status_name(s) == name) return s;
   }
   throw std::invalid_argument("unknown status '" + std::string(name) + "'");

@@ -12,8 +12,9 @@
 
 namespace aosuite::harness {
 
-enum class Status { kPass, kFail, kNew, kError };
-std::string_view status_name(Status s);  // PASS FAIL NEW ERROR
+// kFlaky: a case that failed, then passed when run again (--retries); never an image's verdict.
+enum class Status { kPass, kFail, kNew, kError, kFlaky };
+std::string_view status_name(Status s);  // PASS FAIL NEW ERROR FLAKY
 Status parse_status(std::string_view name);
 
 struct ImageVerdict {

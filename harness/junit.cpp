@@ -21,6 +21,9 @@ void write_junit(const RunResults& run, const std::filesystem::path& file) {
       case Status::kPass:
         cases += "/>\n";
         break;
+      case Status::kFlaky:  // passed in the end; the failure is kept as Surefire does
+        cases += fmt::format(">\n    <flakyFailure message=\"{}\"/>\n  </testcase>\n", why);
+        break;
       case Status::kFail:
       case Status::kNew:
         cases += fmt::format(">\n    <failure type=\"{}\" message=\"{}\"/>\n  </testcase>\n",

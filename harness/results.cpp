@@ -47,13 +47,21 @@ json to_json(const CaseResult& c) {
   }
   for (const resemble::Box& b : c.tolerance.ignore)
     ignore.push_back({b.left, b.top, b.right, b.bottom});
+  json params = json::object();
+  for (const auto& [k, v] : c.params)
+    params[k] = v.is_string() ? json(printable(v.get<std::string>())) : v;
   return {{"id", c.id},
+          {"kind", c.kind},
+          {"source", printable(c.source)},
+          {"exit_status", c.exit_status},
+          {"attempts", c.attempts},
+          {"command_stderr", printable_lines(c.command_stderr)},
           {"scene", c.scene},
           {"view", c.view},
           {"technique", c.technique},
           {"width", c.width},
           {"height", c.height},
-          {"params", c.params},
+          {"params", params},
           {"tolerance",
            {{"mode", resemble::mode_name(c.tolerance.mode)},
             {"max_mismatch_percent", c.tolerance.max_mismatch_percent},
@@ -81,7 +89,12 @@ CaseResult case_from_json(const json& j) {
     throw std::runtime_error("case id '" + printable(c.id) + "' is not a name");
   c.technique = j.at("technique");
   c.width = j.at("width"), c.height = j.at("height");
-  c.params = j.at("params").get<std::map<std::string, std::string>>();
+  for (const auto& [k, v] : j.at("params").items()) c.params[k] = v;
+  c.kind = j.value("kind", std::string("render"));
+  c.source = j.value("source", std::string());
+  c.exit_status = j.value("exit_status", -1);
+  c.attempts = j.value("attempts", 1);
+  c.command_stderr = j.value("command_stderr", std::string());
   const json& t = j.at("tolerance");
   c.tolerance.mode = resemble::parse_mode(t.at("mode").get<std::string>());
   c.tolerance.max_mismatch_percent = t.at("max_mismatch_percent");
@@ -99,8 +112,7 @@ CaseResult case_from_json(const json& j) {
                                "' is not inside its case folder");
     }
   }
-  for (const json& t2 : j.at("times"))
-    c.times.push_back({t2.at("pass"), t2.at("gpu_ms")});
+  for (const json& t2 : j.at("times")) c.times.push_back({t2.at("pass"), t2.at("gpu_ms")});
   c.ao_effect_less = j.at("ao_effect_less"), c.ao_effect_nothing = j.at("ao_effect_nothing");
   c.input_hash = j.at("input_hash"), c.judge_hash = j.at("judge_hash");
   c.reused = j.at("reused"), c.seconds = j.at("seconds");
@@ -117,6 +129,7 @@ json to_json(const RunResults& r) {
           {"platform", r.platform},
           {"bless_prefix", printable(r.bless_prefix)},
           {"shard", r.shard},
+          {"approve_prefix", printable(r.approve_prefix)},
           {"cases", cases}};
 }
 
@@ -125,6 +138,7 @@ RunResults run_from_json(const json& j) {
   r.suite = j.at("suite"), r.suite_file = j.at("suite_file"), r.gl = j.at("gl");
   r.platform = j.at("platform"), r.shard = j.at("shard");
   r.bless_prefix = j.value("bless_prefix", std::string());
+  r.approve_prefix = j.value("approve_prefix", std::string());
   if (!valid_name(r.suite))
     throw std::runtime_error("suite '" + printable(r.suite) + "' is not a name");
   for (const json& c : j.at("cases")) r.cases.push_back(case_from_json(c));
@@ -163,6 +177,9 @@ Counts count(const RunResults& r) {
         break;
       case Status::kError:
         ++n.error;
+        break;
+      case Status::kFlaky:
+        ++n.flaky;
         break;
     }
   }

@@ -15,8 +15,16 @@ namespace aosuite::harness {
 
 struct CaseResult {
   std::string id, scene, view, technique;
+  // "render" (a scene), "command" (files a command wrote), "files" (files on disk), "folder"
+  // (folder mode: one image paired by relative path).
+  std::string kind = "render";
+  // What an image case shows: its command line (shell-quoted), its files, or folder mode's
+  // relative path.
+  std::string source;
   int width = 0, height = 0;
-  std::map<std::string, std::string> params;  // every parameter the render used
+  // Every parameter the render used (an image case's params), with its type: numbers are
+  // numbers, lists arrays.
+  std::map<std::string, nlohmann::json> params;
   Tolerance tolerance;
   Status status = Status::kError;  // the worst of the images'
   std::string message;             // render error, or the first failing image's reason
@@ -30,7 +38,11 @@ struct CaseResult {
   std::string input_hash, judge_hash;  // what the render and the verdict depended on
   bool reused = false;                 // inputs and goldens unchanged: nothing re-rendered
   double seconds = 0;
-  std::string bless_command;  // set for cases that are not passing
+  std::string bless_command;   // set for cases that are not passing
+  int exit_status = -1;        // a command case's exit status (-1: none ran)
+  std::string command_stderr;  // the end of what its command wrote to stderr
+  int attempts = 1;            // how often it ran (--retries)
+  bool kept = false;           // bless: the case passes, so its goldens were left as they were
 };
 
 struct RunResults {
@@ -39,6 +51,9 @@ struct RunResults {
   // with.
   std::string bless_prefix;
   std::string shard;  // "i/n", empty when not sharded
+  // The command that accepts cases from this report's images: "aosuite bless SUITE
+  // --from-report --report DIR"; the page adds --filter.
+  std::string approve_prefix;
   std::vector<CaseResult> cases;
 };
 
@@ -56,10 +71,10 @@ RunResults read_results(const std::filesystem::path& dir);
 void write_results(const std::filesystem::path& dir, const RunResults& r);
 
 struct Counts {
-  int pass = 0, fail = 0, fresh = 0, error = 0;
+  int pass = 0, fail = 0, fresh = 0, error = 0, flaky = 0;
 };
 Counts count(const RunResults& r);
-// 0 all passed, 1 any failed or new, 2 any could not be judged.
+// 0 all passed (flaky ones too), 1 any failed or new, 2 any could not be judged.
 int exit_code(const Counts& c);
 
 }  // namespace aosuite::harness

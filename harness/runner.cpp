@@ -10,8 +10,10 @@
 #include <stdexcept>
 #include <thread>
 
+#include "compare/image_io.hpp"
 #include "compare/opencv.hpp"
 #include "harness/case_hash.hpp"
+#include "harness/command.hpp"
 #include "harness/escape.hpp"
 #include "harness/goldens.hpp"
 #include "renderer/params.hpp"
@@ -67,6 +69,7 @@ std::vector<const Case*> select(const Suite& suite, const Selection& s) {
 }
 
 std::string bless_prefix(const Suite& suite) {
+  if (!suite.bless_prefix.empty()) return suite.bless_prefix;
   std::string out = "aosuite bless " + shell_quote(suite.file.string());
   if (suite.goldens_given) out += " --goldens " + shell_quote(suite.goldens.string());
   return out;
@@ -92,10 +95,19 @@ std::string bless_command(std::string_view prefix, const std::vector<std::string
 
 namespace {
 
-// A case's three images as PNG bytes and pixels, fresh or reused from the report folder.
+// A case's images as PNG bytes and pixels, fresh or reused from the report folder.
 struct Rendered {
   std::map<std::string, std::vector<unsigned char>> png;
   std::map<std::string, cv::Mat> rgba;
+};
+
+// A GL context, made when the first case that renders a scene needs one.
+struct Gl {
+  std::unique_ptr<rd::Renderer> renderer;
+  rd::Renderer& get() {
+    if (!renderer) renderer = std::make_unique<rd::Renderer>();
+    return *renderer;
+  }
 };
 
 std::optional<CaseResult> previous(const fs::path& case_dir) {
@@ -112,6 +124,12 @@ double raw_mismatch(const cv::Mat& a, const cv::Mat& b, resemble::Mode mode) {
   resemble::Options o;
   o.modes = {mode};
   return resemble::compare(a, b, o).raw_mismatch_percentage;
+}
+
+// The images a case keeps in its report folder: the three renders, or an image case's own.
+std::vector<std::string> kept_images(const Case& c) {
+  if (c.source) return c.images;
+  return {kImageNames.begin(), kImageNames.end()};
 }
 
 // Renders the case into `r`, writing its images to `case_dir`; fills times and the AO effect.
@@ -132,15 +150,79 @@ void render_case(rd::Renderer& renderer, const Case& c, const fs::path& case_dir
   r.ao_effect_nothing = raw_mismatch(img.no_ao, img.with_ao, resemble::Mode::kNothing);
 }
 
-bool reuse_render(const CaseResult& prev, const fs::path& case_dir, CaseResult& r, Rendered& out) {
-  for (const char* name : kImageNames) {
-    if (!fs::is_regular_file(case_dir / (std::string(name) + ".png"))) return false;
+bool is_shell(const std::string& program) {
+  const std::string base = fs::path(program).filename().string();
+  return base == "sh" || base == "bash" || base == "dash" || base == "zsh" || base == "ksh";
+}
+
+std::string last_line(std::string_view text) {
+  while (!text.empty() && (text.back() == '\n' || text.back() == '\r')) text.remove_suffix(1);
+  const std::size_t nl = text.rfind('\n');
+  return std::string(nl == std::string_view::npos ? text : text.substr(nl + 1));
+}
+
+// An image case's images: its command's outputs or its files, checked as PNG and copied into
+// `case_dir`. The command runs in case_dir/.out ({out}), which starts empty.
+void produce_images(const Case& c, const fs::path& case_dir, CaseResult& r, Rendered& out) {
+  const ImageSource& src = *c.source;
+  fs::create_directories(case_dir);
+  std::vector<fs::path> from = src.files;
+  if (!src.command.empty()) {
+    const fs::path work = fs::absolute(case_dir / ".out").lexically_normal();
+    fs::remove_all(work);
+    fs::create_directories(work);
+    std::map<std::string, std::string> values = command_placeholders(c);
+    values["out"] = work.string();
+    std::vector<std::string> argv;
+    for (std::size_t i = 0; i < src.command.size(); ++i) {
+      // Inside `sh -c SCRIPT` what is inserted is shell-quoted: no field is ever shell syntax.
+      const bool quote = i > 0 && is_shell(src.command[0]) && src.command[i - 1] == "-c";
+      argv.push_back(expand_placeholders(src.command[i], values, quote));
+    }
+    if (argv[0].find('/') != std::string::npos && fs::path(argv[0]).is_relative()) {
+      argv[0] = (src.dir / argv[0]).lexically_normal().string();  // relative to the suite
+    }
+    const CommandOutcome run =
+        run_command(argv, work, case_dir / "stdout.txt", case_dir / "stderr.txt",
+                    src.timeout_seconds, {"AOSUITE_OUT=" + work.string(), "AOSUITE_CASE=" + c.id});
+    r.exit_status = run.exit_status;
+    r.command_stderr = run.stderr_tail;
+    const std::string said = last_line(run.stderr_tail);
+    if (run.timed_out) {
+      throw std::runtime_error(
+          fmt::format("command timed out after {} s and was killed", src.timeout_seconds));
+    }
+    if (run.exit_status != 0) {
+      throw std::runtime_error(fmt::format("command exited with status {}{}", run.exit_status,
+                                           said.empty() ? "" : ": " + said));
+    }
+    from.clear();
+    for (const std::string& o : src.outputs) from.push_back(work / o);
   }
-  for (const char* name : kImageNames) {
-    out.png[name] = read_file(case_dir / (std::string(name) + ".png"));
+  for (std::size_t i = 0; i < c.images.size(); ++i) {
+    const std::string& name = c.images[i];
+    if (!fs::is_regular_file(from[i])) {
+      throw std::runtime_error(src.command.empty() ? from[i].string() + ": no such image file"
+                                                   : "the command did not write " + src.outputs[i] +
+                                                         " (" + from[i].string() + ")");
+    }
+    out.png[name] = read_file(from[i]);
+    check_png(out.png[name], from[i].string());
+    write_file_atomic(case_dir / (name + ".png"), out.png[name]);
+  }
+}
+
+bool reuse_render(const Case& c, const CaseResult& prev, const fs::path& case_dir, CaseResult& r,
+                  Rendered& out) {
+  for (const std::string& name : kept_images(c)) {
+    if (!fs::is_regular_file(case_dir / (name + ".png"))) return false;
+  }
+  for (const std::string& name : kept_images(c)) {
+    out.png[name] = read_file(case_dir / (name + ".png"));
   }
   r.times = prev.times;
   r.ao_effect_less = prev.ao_effect_less, r.ao_effect_nothing = prev.ao_effect_nothing;
+  r.exit_status = prev.exit_status, r.command_stderr = prev.command_stderr;
   return true;
 }
 
@@ -157,14 +239,44 @@ Status worst(Status a, Status b) {
   return rank(a) >= rank(b) ? a : b;
 }
 
+// A parameter's value with its type: a number, a name, a list of numbers.
+// Floats go through their shortest text, so 0.012f is 0.012 in JSON, not 0.012000000104...
+nlohmann::json typed(const rd::ParamValue& v) {
+  const auto number = [](float f) { return std::stod(fmt::format("{}", f)); };
+  if (const float* f = std::get_if<float>(&v)) return number(*f);
+  if (const auto* list = std::get_if<std::vector<float>>(&v)) {
+    nlohmann::json out = nlohmann::json::array();
+    for (const float f : *list) out.push_back(number(f));
+    return out;
+  }
+  return std::visit([](const auto& x) { return nlohmann::json(x); }, v);
+}
+
 CaseResult skeleton(const Case& c) {
   CaseResult r;
-  r.id = c.id, r.scene = c.scene->name, r.view = c.view;
+  r.id = c.id, r.tolerance = c.tolerance;
+  if (c.source) {
+    const ImageSource& src = *c.source;
+    r.kind = !src.path.empty() ? "folder" : src.command.empty() ? "files" : "command";
+    r.width = c.width, r.height = c.height;
+    if (!src.path.empty()) {
+      r.source = src.path, r.width = r.height = 0;
+    } else if (!src.command.empty()) {
+      for (const std::string& a : src.command)
+        r.source += (r.source.empty() ? "" : " ") + shell_quote(a);
+    } else {
+      for (const fs::path& f : src.files) r.source += (r.source.empty() ? "" : " ") + f.string();
+    }
+    for (const auto& [k, v] : c.values.items()) r.params[k] = v;
+    for (const std::string& image : c.images) r.files[image] = c.id + "/" + image + ".png";
+    return r;
+  }
+  r.scene = c.scene->name, r.view = c.view;
   r.technique = std::string(rd::technique_name(c.technique));
-  r.width = c.width, r.height = c.height, r.tolerance = c.tolerance;
+  r.width = c.width, r.height = c.height;
   for (const rd::ParamSpec& spec : rd::param_specs()) {
     if (rd::applies(spec, c.technique))
-      r.params[std::string(spec.key)] = rd::param_text(spec, c.params);
+      r.params[std::string(spec.key)] = typed(rd::param_value(spec, c.params));
   }
   r.files = {{"no_ao", c.id + "/no_ao.png"},
              {"with_ao", c.id + "/with_ao.png"},
@@ -172,33 +284,47 @@ CaseResult skeleton(const Case& c) {
   return r;
 }
 
-// Renders (or reuses) one case into the report folder: the part check and bless share.
-// Returns the previous result when the render was reused.
-std::optional<CaseResult> prepare(rd::Renderer& renderer, const std::string& gl, const Case& c,
+// Renders, runs or reads (or reuses) one case into the report folder: the part check and bless
+// share. Returns the previous result when the images were reused.
+std::optional<CaseResult> prepare(Gl& gl, const std::string& gl_description, const Case& c,
                                   const RunOptions& o, CaseResult& r, Rendered& images) {
   const fs::path case_dir = o.report_dir / "cases" / c.id;
-  r.input_hash = input_hash(c, gl);
+  r.input_hash = c.source ? image_input_hash(c) : input_hash(c, gl_description);
   std::optional<CaseResult> prev = o.reuse ? previous(case_dir) : std::nullopt;
-  if (prev && prev->input_hash == r.input_hash && reuse_render(*prev, case_dir, r, images)) {
+  if (prev && prev->input_hash == r.input_hash && reuse_render(c, *prev, case_dir, r, images)) {
     return prev;
   }
-  render_case(renderer, c, case_dir, r, images);
+  if (c.source) {
+    produce_images(c, case_dir, r, images);
+  } else {
+    render_case(gl.get(), c, case_dir, r, images);
+  }
   return std::nullopt;
+}
+
+// The goldens accepted for one image: folder mode's one expected file, else the goldens folder.
+std::vector<fs::path> goldens_of(const Suite& suite, const Case& c, const std::string& image,
+                                 const std::string& platform) {
+  if (c.source && !c.source->golden_file.empty()) {
+    std::error_code ec;
+    if (fs::exists(fs::symlink_status(c.source->golden_file, ec))) return {c.source->golden_file};
+    return {};
+  }
+  return accepted_goldens(suite.goldens / c.id, image, platform);
 }
 
 void judge_case(const Suite& suite, const Case& c, const std::string& platform, const RunOptions& o,
                 const std::optional<CaseResult>& prev, CaseResult& r, Rendered& images) {
   const fs::path case_dir = o.report_dir / "cases" / c.id;
-  const fs::path golden_dir = suite.goldens / c.id;
   std::vector<std::vector<fs::path>> goldens;
-  for (const std::string& image : c.images) {
-    goldens.push_back(accepted_goldens(golden_dir, image, platform));
-  }
+  for (const std::string& image : c.images)
+    goldens.push_back(goldens_of(suite, c, image, platform));
   r.judge_hash = judge_hash(c, r.input_hash, goldens);
-  if (prev && prev->judge_hash == r.judge_hash) {
+  if (prev && prev->judge_hash == r.judge_hash && prev->status != Status::kError) {
     const double seconds = r.seconds;
     r = *prev;
-    r.reused = true, r.seconds = seconds;
+    r.reused = true, r.seconds = seconds, r.attempts = 1;
+    if (r.status == Status::kFlaky) r.status = Status::kPass;  // this run passed at once
     return;
   }
   r.status = Status::kPass;
@@ -224,9 +350,21 @@ void judge_case(const Suite& suite, const Case& c, const std::string& platform, 
     v.diff = {};
     r.images.push_back(std::move(v));
   }
-  if (r.status != Status::kPass && r.status != Status::kError) {
-    r.bless_command = bless_command(bless_prefix(suite), {c.id});
-  }
+}
+
+// Folder mode: an image only in the expected folder.
+void judge_deleted(const Case& c, const RunOptions& o, CaseResult& r) {
+  const fs::path case_dir = o.report_dir / "cases" / c.id;
+  fs::create_directories(case_dir);
+  r.files.clear();
+  write_file_atomic(case_dir / "golden_image.png", read_file(c.source->golden_file));
+  r.files["golden:image"] = c.id + "/golden_image.png";
+  r.status = Status::kFail;
+  r.message = "deleted: only in the expected folder";
+  ImageVerdict v;
+  v.image = "image", v.status = Status::kFail, v.golden = c.source->golden_file;
+  v.mismatch_percent = 100, v.mismatch_text = "100.00", v.message = r.message;
+  r.images.push_back(std::move(v));
 }
 
 void save_case(const fs::path& report_dir, const CaseResult& r) {
@@ -235,8 +373,8 @@ void save_case(const fs::path& report_dir, const CaseResult& r) {
                     {reinterpret_cast<const unsigned char*>(text.data()), text.size()});
 }
 
-// Runs `work(renderer, case, result)` over the cases on `jobs` threads, each with its own GL
-// context; `first` is the main thread's renderer, reused by worker 0.
+// Runs `work(gl, case, result)` over the cases on `jobs` threads, each with its own GL
+// context (made when a case first needs one); `first` is the main thread's, reused by worker 0.
 template <typename Work>
 std::vector<CaseResult> for_each_case(const std::vector<const Case*>& cases, const RunOptions& o,
                                       std::unique_ptr<rd::Renderer> first, Work work) {
@@ -245,13 +383,13 @@ std::vector<CaseResult> for_each_case(const std::vector<const Case*>& cases, con
   std::atomic<int> done{0};
   std::mutex report;
   auto worker = [&](std::unique_ptr<rd::Renderer> renderer) {
+    Gl gl{std::move(renderer)};
     for (std::size_t i; (i = next++) < cases.size();) {
       const auto t0 = std::chrono::steady_clock::now();
       CaseResult& r = results[i];
       r = skeleton(*cases[i]);
       try {
-        if (!renderer) renderer = std::make_unique<rd::Renderer>();
-        work(*renderer, *cases[i], r);
+        work(gl, *cases[i], r);
       } catch (const std::exception& e) {
         r.status = Status::kError;
         r.message = e.what();
@@ -269,6 +407,12 @@ std::vector<CaseResult> for_each_case(const std::vector<const Case*>& cases, con
   return results;
 }
 
+std::string list_command(const Suite& suite) {
+  return "aosuite check " +
+         (suite.check_args.empty() ? shell_quote(suite.file.string()) : suite.check_args) +
+         " --list";
+}
+
 // The selected cases; an empty selection is an error, found before anything is written: a run
 // that judged nothing is never green and must not replace the last report.
 std::vector<const Case*> select_some(const Suite& suite, const Selection& s) {
@@ -278,20 +422,32 @@ std::vector<const Case*> select_some(const Suite& suite, const Selection& s) {
       s.filter.empty() ? std::string("the suite") : "--filter " + shell_quote(s.filter);
   if (s.shard_count > 1) why += fmt::format(" with shard {}/{}", s.shard_index, s.shard_count);
   throw std::invalid_argument(fmt::format(
-      "{}: {} selects none of its {} cases; nothing was run (ids: aosuite check {} --list)",
-      printable(suite.file.string()), printable(why), suite.cases.size(),
-      shell_quote(suite.file.string())));
+      "{}: {} selects none of its {} cases; nothing was run (ids: {})",
+      printable(suite.file.string()), printable(why), suite.cases.size(), list_command(suite)));
 }
 
-RunResults start(const Suite& suite, const RunOptions& o, std::unique_ptr<rd::Renderer>& first) {
-  first = std::make_unique<rd::Renderer>();
+RunResults start(const Suite& suite, const RunOptions& o, const std::vector<const Case*>& cases,
+                 bool may_render, std::unique_ptr<rd::Renderer>& first) {
   RunResults run;
   run.suite = suite.name, run.suite_file = suite.file.string();
   run.bless_prefix = bless_prefix(suite);
-  // The backend and device after the driver's own three fields: the report names them, and
-  // platform_key reads the renderer field alone, so goldens match on EGL and OSMesa alike.
-  run.gl = first->gl_description() + " | " + first->gl_source();
-  run.platform = platform_key(run.gl);
+  run.approve_prefix = run.bless_prefix + " --from-report --report " +
+                       shell_quote(o.report_dir.lexically_normal().string());
+  const bool renders = may_render && std::any_of(cases.begin(), cases.end(),
+                                                 [](const Case* c) { return !c->source; });
+  if (renders) {
+    first = std::make_unique<rd::Renderer>();
+    // The backend and device after the driver's own three fields: the report names them, and
+    // platform_key reads the renderer field alone, so goldens match on EGL and OSMesa alike.
+    run.gl = first->gl_description() + " | " + first->gl_source();
+    run.platform = platform_key(run.gl);
+  }
+  if (const char* p = std::getenv("AOSUITE_PLATFORM"); p && *p) run.platform = p;
+  if (!o.platform.empty()) run.platform = o.platform;
+  if (!run.platform.empty() && !valid_name(run.platform)) {
+    throw std::invalid_argument("platform '" + printable(run.platform) +
+                                "' must be letters, digits, - _ . (it names a folder)");
+  }
   if (o.selection.shard_count > 1) {
     run.shard = fmt::format("{}/{}", o.selection.shard_index, o.selection.shard_count);
   }
@@ -299,23 +455,101 @@ RunResults start(const Suite& suite, const RunOptions& o, std::unique_ptr<rd::Re
   return run;
 }
 
+// One attempt at a case: images, then the verdict.
+void check_once(const Suite& suite, const std::string& gl, const std::string& platform,
+                const RunOptions& o, Gl& renderer, const Case& c, CaseResult& r) {
+  if (c.source && c.source->deleted) {
+    r.input_hash = r.judge_hash = "";
+    judge_deleted(c, o, r);
+    return;
+  }
+  Rendered images;
+  const auto prev = prepare(renderer, gl, c, o, r, images);
+  judge_case(suite, c, platform, o, prev, r, images);
+}
+
 }  // namespace
 
 RunResults check(const Suite& suite, const RunOptions& o) {
   const std::vector<const Case*> cases = select_some(suite, o.selection);
   std::unique_ptr<rd::Renderer> first;
-  RunResults run = start(suite, o, first);
+  RunResults run = start(suite, o, cases, true, first);
   const std::string gl = run.gl, platform = run.platform;
-  run.cases = for_each_case(cases, o, std::move(first),
-                            [&](rd::Renderer& renderer, const Case& c, CaseResult& r) {
-                              Rendered images;
-                              const auto prev = prepare(renderer, gl, c, o, r, images);
-                              judge_case(suite, c, platform, o, prev, r, images);
-                              save_case(o.report_dir, r);
-                            });
+  RunOptions again = o;
+  again.reuse = false;
+  run.cases =
+      for_each_case(cases, o, std::move(first), [&](Gl& renderer, const Case& c, CaseResult& r) {
+        auto attempt = [&](const RunOptions& opts, CaseResult& into) {
+          try {
+            check_once(suite, gl, platform, opts, renderer, c, into);
+          } catch (const std::exception& e) {
+            into.status = Status::kError;
+            into.message = e.what();
+          }
+        };
+        attempt(o, r);
+        const CaseResult first_try = r;
+        for (int k = 1; k <= o.retries && (r.status == Status::kFail || r.status == Status::kError);
+             ++k) {
+          r = skeleton(c);
+          attempt(again, r);
+          r.attempts = k + 1;
+          if (r.status == Status::kPass) {
+            r.status = Status::kFlaky;
+            r.message =
+                fmt::format("failed, then passed on attempt {}: {}", k + 1, first_try.message);
+          }
+        }
+        if (r.status == Status::kFail || r.status == Status::kNew) {
+          r.bless_command = bless_command(bless_prefix(suite), {c.id});
+        }
+        save_case(o.report_dir, r);
+      });
   write_results(o.report_dir, run);
   return run;
 }
+
+namespace {
+
+// Where a case's image is accepted: folder mode's expected file, else its golden (variant).
+fs::path bless_target(const Suite& suite, const Case& c, const std::string& image,
+                      const std::string& platform, const std::string& tag) {
+  if (c.source && !c.source->golden_file.empty()) return c.source->golden_file;
+  return golden_path(suite.goldens / c.id, image, platform, tag);
+}
+
+void write_case_goldens(const Suite& suite, const Case& c, const std::string& platform,
+                        const std::string& tag, const Rendered& images, CaseResult& r) {
+  const fs::path dir = c.source && !c.source->golden_file.empty()
+                           ? c.source->golden_file.parent_path()
+                           : suite.goldens / c.id;
+  std::vector<GoldenWrite> writes;
+  std::string written;
+  for (const std::string& image : c.images) {
+    writes.emplace_back(bless_target(suite, c, image, platform, tag), images.png.at(image));
+    written += (written.empty() ? "" : ", ") + writes.back().first.string();
+  }
+  remove_stale_temporaries(dir);
+  try {
+    replace_goldens(writes);
+  } catch (const std::exception& e) {
+    throw std::runtime_error(std::string("goldens not written: ") + e.what());
+  }
+  r.status = Status::kPass;
+  r.message = "wrote " + written;
+}
+
+// Folder mode: accepting a deleted image removes the expected file.
+void accept_deletion(const Case& c, CaseResult& r) {
+  std::error_code ec;
+  if (!fs::remove(c.source->golden_file, ec) && ec) {
+    throw std::runtime_error(c.source->golden_file.string() + ": cannot remove: " + ec.message());
+  }
+  r.status = Status::kPass;
+  r.message = "removed " + c.source->golden_file.string();
+}
+
+}  // namespace
 
 RunResults bless(const Suite& suite, const BlessOptions& b) {
   if (!b.tag.empty() && !valid_name(b.tag)) {
@@ -323,34 +557,107 @@ RunResults bless(const Suite& suite, const BlessOptions& b) {
         "--variant '" + printable(b.tag) +
         "' must be letters, digits, - _ . and not start with '.' (it names a file)");
   }
-  const std::vector<const Case*> cases = select_some(suite, b.run.selection);
+  const bool from_report = b.from_report || b.failed;
+  std::vector<const Case*> cases;
+  std::map<std::string, CaseResult> reported;
+  if (from_report) {
+    const RunResults last = read_results(b.run.report_dir);
+    if (last.suite != suite.name) {
+      throw std::invalid_argument(printable(
+          fmt::format("{}: a report of suite '{}', not '{}'",
+                      (b.run.report_dir / "results.json").string(), last.suite, suite.name)));
+    }
+    for (const CaseResult& c : last.cases) reported[c.id] = c;
+    if (b.failed) {
+      for (const Case* c : select(suite, b.run.selection)) {
+        const auto it = reported.find(c->id);
+        if (it != reported.end() &&
+            (it->second.status == Status::kFail || it->second.status == Status::kNew)) {
+          cases.push_back(c);
+        }
+      }
+      if (cases.empty()) {
+        RunResults none;
+        none.suite = suite.name, none.suite_file = suite.file.string();
+        return none;
+      }
+    }
+  }
+  if (cases.empty()) cases = select_some(suite, b.run.selection);
   std::unique_ptr<rd::Renderer> first;
-  RunResults run = start(suite, b.run, first);
+  RunResults run = start(suite, b.run, cases, !from_report, first);
+  if (b.platform && run.platform.empty()) {
+    throw std::invalid_argument(
+        "--platform: no platform key (these cases render no scene): set AOSUITE_PLATFORM");
+  }
   const std::string gl = run.gl, platform = b.platform ? run.platform : std::string();
+  const std::string judge_platform = run.platform;
   run.cases = for_each_case(
-      cases, b.run, std::move(first), [&](rd::Renderer& renderer, const Case& c, CaseResult& r) {
+      cases, b.run, std::move(first), [&](Gl& renderer, const Case& c, CaseResult& r) {
+        const bool deleted = c.source && c.source->deleted;
         Rendered images;
-        try {
-          prepare(renderer, gl, c, b.run, r, images);
-        } catch (const std::exception& e) {
-          throw std::runtime_error(std::string("could not be rendered: ") + e.what() +
-                                   "; its goldens are untouched");
+        if (from_report) {
+          const auto it = reported.find(c.id);
+          if (it == reported.end()) {
+            throw std::runtime_error("not in the report " + b.run.report_dir.string() +
+                                     " (check it first); its goldens are untouched");
+          }
+          const Status was = it->second.status;
+          if ((was == Status::kPass || was == Status::kFlaky) && !b.force) {
+            r.status = Status::kPass, r.kept = true;
+            r.message = "passed in the report; goldens kept (--force rewrites them)";
+            return;
+          }
+          if (was == Status::kError) {
+            throw std::runtime_error("could not be judged in the report (" + it->second.message +
+                                     "); its goldens are untouched");
+          }
+          if (!deleted) {
+            for (const std::string& image : c.images) {
+              const fs::path f = b.run.report_dir / "cases" / c.id / (image + ".png");
+              try {
+                images.png[image] = read_file(f);
+                check_png(images.png[image], f.string());
+              } catch (const std::exception& e) {
+                throw std::runtime_error(std::string("the report's image is unusable: ") +
+                                         e.what() + "; its goldens are untouched");
+              }
+            }
+          }
+        } else if (!deleted) {
+          std::optional<CaseResult> prev;
+          try {
+            prev = prepare(renderer, gl, c, b.run, r, images);
+          } catch (const std::exception& e) {
+            throw std::runtime_error(std::string("could not be rendered: ") + e.what() +
+                                     "; its goldens are untouched");
+          }
+          // A passing case is left alone: bless never rewrites its goldens unless asked (--force),
+          // but it does write a platform golden or variant that does not exist yet.
+          bool targets_exist = true;
+          for (const std::string& image : c.images) {
+            targets_exist =
+                targets_exist && fs::exists(bless_target(suite, c, image, platform, b.tag));
+          }
+          if (!b.force && targets_exist) {
+            CaseResult verdict = r;
+            try {
+              judge_case(suite, c, judge_platform, b.run, std::nullopt, verdict, images);
+            } catch (const std::exception&) {
+              verdict.status = Status::kError;  // whatever is wrong there, bless replaces it
+            }
+            if (verdict.status == Status::kPass) {
+              r.status = Status::kPass, r.kept = true;
+              r.message = "passes; goldens kept (--force rewrites them)";
+              return;
+            }
+          }
         }
-        const fs::path case_dir = suite.goldens / c.id;
-        std::vector<GoldenWrite> writes;
-        std::string written;
-        for (const std::string& image : c.images) {
-          writes.emplace_back(golden_path(case_dir, image, platform, b.tag), images.png.at(image));
-          written += (written.empty() ? "" : ", ") + writes.back().first.string();
+        if (deleted) {
+          accept_deletion(c, r);
+        } else {
+          write_case_goldens(suite, c, platform, b.tag, images, r);
         }
-        remove_stale_temporaries(case_dir);
-        try {
-          replace_goldens(writes);
-        } catch (const std::exception& e) {
-          throw std::runtime_error(std::string("goldens not written: ") + e.what());
-        }
-        r.status = Status::kPass;
-        r.message = "wrote " + written;
       });
   return run;
 }

@@ -32,6 +32,10 @@ struct RunOptions {
   std::filesystem::path report_dir;
   bool diff_all = false;  // diff images for passing cases too
   bool reuse = true;      // skip cases whose inputs and goldens are unchanged
+  int retries = 0;        // run a failing case (FAIL or ERROR) up to this many times more
+  // The platform key goldens are looked up under; empty: AOSUITE_PLATFORM, else the GL
+  // renderer's when the selection renders a scene.
+  std::string platform;
   std::function<void(const CaseResult&, int done, int total)> progress;
 };
 
@@ -44,12 +48,19 @@ struct BlessOptions {
   RunOptions run;
   bool platform = false;  // write the platform's goldens instead of the generic ones
   std::string tag;        // write an extra accepted variant <image>~<tag>.png
+  bool force = false;     // rewrite the goldens of cases that pass too
+  // Accept the images of the last report in run.report_dir (what was reviewed) instead of
+  // rendering; `failed`: every case that report says FAIL or NEW (and the selection keeps).
+  bool from_report = false, failed = false;
 };
-// Writes goldens for the selected cases from fresh (or unchanged) renders, each case's all or
-// nothing (replace_goldens), after removing stale temporaries a killed bless left there. A case
-// that fails to render or to write is reported and its goldens are left alone. Returns one
-// result per case: kPass when blessed, kError (with the reason) when not. Throws
-// std::invalid_argument for an empty selection or a tag that is not a valid_name().
+// Writes goldens for the selected cases from fresh (or unchanged) renders, or from the last
+// report's images (from_report, failed), each case's all or nothing (replace_goldens), after
+// removing stale temporaries a killed bless left there. A case that passes is left alone
+// (kPass, kept) unless `force`. A case that fails to render or to write is reported and its
+// goldens are left alone. Returns one result per case: kPass when blessed or kept, kError (with
+// the reason) when not. Throws std::invalid_argument for an empty selection (except `failed`
+// with nothing failing: no cases), a tag that is not a valid_name(), or a report of another
+// suite; std::runtime_error for a missing or malformed report.
 RunResults bless(const Suite& suite, const BlessOptions& options);
 
 // "aosuite bless SUITE [--goldens DIR]", shell-quoted.

@@ -19,10 +19,29 @@ namespace fs = std::filesystem;
 
 using Reader = TomlReader;
 
+// A parameter as its TOML type: integer, float, boolean, string, or an array of them.
+nlohmann::json typed_value(const Reader& r, const toml::node& n) {
+  if (const toml::array* a = n.as_array()) {
+    nlohmann::json out = nlohmann::json::array();
+    for (const toml::node& e : *a) out.push_back(typed_value(r, e));
+    return out;
+  }
+  if (auto s = n.value_exact<std::string>()) return *s;
+  if (auto i = n.value_exact<std::int64_t>()) return *i;
+  if (auto d = n.value_exact<double>()) return *d;
+  if (auto b = n.value_exact<bool>()) return *b;
+  r.fail(n.source(), "a parameter must be a number, a string, a boolean or an array of them");
+}
+
 void read_params(const Reader& r, const toml::node& n, std::map<std::string, std::string>& out,
-                 std::map<std::string, toml::source_region>& where) {
+                 std::map<std::string, toml::source_region>& where, nlohmann::json& values) {
   for (const auto& [key, value] : r.table(n, "params")) {
-    out[std::string(key.str())] = r.param(value);
+    values[std::string(key.str())] = typed_value(r, value);
+    if (auto b = value.value_exact<bool>()) {
+      out[std::string(key.str())] = *b ? "true" : "false";  // renderer cases refuse it by name
+    } else {
+      out[std::string(key.str())] = r.param(value);
+    }
     where[std::string(key.str())] = value.source();
   }
 }
@@ -76,6 +95,7 @@ struct Common {
   std::vector<std::string> images{"with_ao"};
   std::map<std::string, std::string> params;
   std::map<std::string, toml::source_region> param_at;
+  nlohmann::json values = nlohmann::json::object();
   Tolerance tolerance;
 };
 
@@ -100,11 +120,154 @@ void read_common(const Reader& r, const fs::path& dir, const toml::table& t, Com
       }
     }
   }
-  if (const toml::node* n = t.get("params")) read_params(r, *n, c.params, c.param_at);
+  if (const toml::node* n = t.get("params")) read_params(r, *n, c.params, c.param_at, c.values);
   if (const toml::node* n = t.get("tolerance")) read_tolerance(r, dir, *n, c.tolerance);
 }
 
+// An image's name from its file: the stem, which names golden and report files.
+std::string image_name(const Reader& r, const toml::node& at, const fs::path& file) {
+  const std::string ext = file.extension().string();
+  if (ext != ".png") r.fail(at.source(), "'" + printable(file.string()) + "' is not a .png file");
+  const std::string stem = file.stem().string();
+  if (!valid_name(stem) || stem == "case" || stem.starts_with("golden_") ||
+      stem.starts_with("diff_") || stem.starts_with("thumb_")) {
+    r.fail(at.source(), "image file name '" + printable(file.filename().string()) +
+                            "' must be letters, digits, - _ . and not start with '.', golden_, "
+                            "diff_ or thumb_ (it names files)");
+  }
+  return stem;
+}
+
+// A relative path that stays inside its folder.
+fs::path inside_path(const Reader& r, const toml::node& at, const std::string& text) {
+  const fs::path p = fs::path(text).lexically_normal();
+  if (text.empty() || p.is_absolute() || p.empty() || *p.begin() == "..") {
+    r.fail(at.source(), "'" + printable(text) + "' must be a relative path inside the folder");
+  }
+  return p;
+}
+
+// The values a command's placeholders take, {out} aside.
+std::map<std::string, std::string> placeholder_values(const Case& k, const ImageSource& src) {
+  std::map<std::string, std::string> v;
+  for (const auto& [key, value] : k.param_overrides) v[key] = value;
+  v["id"] = k.id, v["name"] = k.id, v["suite_dir"] = src.dir.string();
+  v["width"] = std::to_string(k.width), v["height"] = std::to_string(k.height);
+  return v;
+}
+
+// A [[case]] with `command` or `files` instead of `scene`.
+Case image_case(const Reader& r, const fs::path& dir, const toml::table& t, Common c) {
+  for (const char* key : {"scene", "views", "techniques", "images"}) {
+    if (const toml::node* n = t.get(key)) {
+      r.fail(n->source(), std::string("an image case (command or files) takes no '") + key + "'");
+    }
+  }
+  read_common(r, dir, t, c);
+  const toml::node* name = t.get("name");
+  if (!name) r.fail(t.source(), "an image case needs name = \"<case id>\"");
+  Case k;
+  k.id = r.string(*name, "name");
+  if (!valid_name(k.id)) {
+    r.fail(name->source(), "case id '" + printable(k.id) +
+                               "' may hold only letters, digits, - _ . and not start with '.'");
+  }
+  auto src = std::make_shared<ImageSource>();
+  src->dir = fs::absolute(dir).lexically_normal();
+  k.width = c.width, k.height = c.height, k.tolerance = c.tolerance;
+  k.param_overrides = c.params, k.values = c.values;
+  const toml::node* command = t.get("command");
+  const toml::node* files = t.get("files");
+  if (command && files) r.fail(files->source(), "a case has command or files, not both");
+  if (command) {
+    src->command = r.strings(*command, "command");
+    const toml::node* outputs = t.get("outputs");
+    if (!outputs) {
+      r.fail(command->source(), "a command case needs outputs = [\"<file it writes>.png\", ...]");
+    }
+    for (const std::string& o : r.strings(*outputs, "outputs")) {
+      src->outputs.push_back(inside_path(r, *outputs, o).string());
+      k.images.push_back(image_name(r, *outputs, o));
+    }
+    if (const toml::node* n = t.get("inputs")) {
+      for (const std::string& in : r.strings(*n, "inputs")) {
+        src->inputs.push_back(dir / in);
+        if (!fs::is_regular_file(src->inputs.back())) {
+          r.fail(n->source(), "no input file " + printable(src->inputs.back().string()));
+        }
+      }
+    }
+    if (const toml::node* n = t.get("timeout")) {
+      src->timeout_seconds = r.positive(*n, "timeout");
+    }
+  } else {
+    for (const char* key : {"outputs", "inputs", "timeout"}) {
+      if (const toml::node* n = t.get(key)) {
+        r.fail(n->source(), std::string("'") + key + "' belongs to a command case");
+      }
+    }
+    for (const std::string& f : r.strings(*files, "files")) {
+      src->files.push_back(dir / f);
+      k.images.push_back(image_name(r, *files, f));
+    }
+  }
+  std::set<std::string> seen;
+  for (const std::string& image : k.images) {
+    if (!seen.insert(image).second) {
+      r.fail((command ? *t.get("outputs") : *files).source(),
+             "two images named '" + image + "' (their file stems must differ)");
+    }
+  }
+  if (command) {
+    std::map<std::string, std::string> values = placeholder_values(k, *src);
+    values["out"] = "/out";
+    for (const std::string& arg : src->command) {
+      try {
+        expand_placeholders(arg, values, false);
+      } catch (const std::invalid_argument& e) {
+        r.fail(command->source(), e.what());
+      }
+    }
+  }
+  k.source = std::move(src);
+  return k;
+}
+
 }  // namespace
+
+std::map<std::string, std::string> command_placeholders(const Case& k) {
+  return placeholder_values(k, *k.source);
+}
+
+std::string expand_placeholders(std::string_view text,
+                                const std::map<std::string, std::string>& values, bool quote) {
+  std::string out;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char ch = text[i];
+    if ((ch == '{' || ch == '}') && i + 1 < text.size() && text[i + 1] == ch) {
+      out += ch, ++i;
+      continue;
+    }
+    if (ch != '{') {
+      out += ch;
+      continue;
+    }
+    const std::size_t end = text.find('}', i);
+    const std::string key(text.substr(i + 1, end == std::string_view::npos ? 0 : end - i - 1));
+    const auto it = values.find(key);
+    if (end == std::string_view::npos || it == values.end()) {
+      std::string known;
+      for (const auto& [k, v] : values) known += (known.empty() ? "" : ", ") + ("{" + k + "}");
+      throw std::invalid_argument(
+          "unknown placeholder '" +
+          printable(text.substr(i, end == std::string_view::npos ? text.size() - i : end - i + 1)) +
+          "' (known: " + known + "; write {{ for a brace)");
+    }
+    out += quote ? shell_quote(it->second) : it->second;
+    i = end;
+  }
+  return out;
+}
 
 bool valid_name(std::string_view id) {
   return !id.empty() && id.size() <= 200 && id.front() != '.' &&
@@ -154,9 +317,19 @@ Suite load_suite(const fs::path& file) {
   for (const toml::node& node : *cases) {
     const toml::table& t = r.table(node, "case");
     r.only_keys(t, {"scene", "views", "name", "width", "height", "techniques", "images", "params",
-                    "tolerance"});
+                    "tolerance", "command", "outputs", "inputs", "timeout", "files"});
+    if (t.get("command") || t.get("files")) {
+      Case k = image_case(r, dir, t, defaults);
+      if (!ids.insert(k.id).second) r.fail(t.source(), "duplicate case '" + k.id + "'");
+      suite.cases.push_back(std::move(k));
+      continue;
+    }
     const toml::node* scene_node = t.get("scene");
-    if (!scene_node) r.fail(t.source(), "a case needs scene = \"<built-in name or file.toml>\"");
+    if (!scene_node) {
+      r.fail(t.source(),
+             "a case needs scene = \"<built-in name or file.toml>\", command = [...] or files = "
+             "[...]");
+    }
     const std::string source = r.string(*scene_node, "scene");
     auto& scene = scenes[source];
     if (!scene) {
@@ -215,6 +388,67 @@ Suite load_suite(const fs::path& file) {
         suite.cases.push_back(std::move(k));
       }
     }
+  }
+  return suite;
+}
+
+Suite folder_suite(const fs::path& actual, const fs::path& expected, const Tolerance& tolerance) {
+  // Relative path -> whether it is in actual, in expected.
+  std::map<std::string, std::pair<bool, bool>> paths;
+  auto scan = [&](const fs::path& root, bool is_actual) {
+    std::error_code ec;
+    if (!fs::is_directory(root, ec)) {
+      throw std::runtime_error(root.string() + ": not a folder" +
+                               (ec ? " (" + ec.message() + ")" : std::string()));
+    }
+    fs::recursive_directory_iterator it(root, ec), end;
+    for (; !ec && it != end; it.increment(ec)) {
+      if (!it->is_regular_file() || it->path().extension() != ".png") continue;
+      const std::string rel = fs::relative(it->path(), root).generic_string();
+      if (rel.empty() || rel.front() == '.') continue;
+      (is_actual ? paths[rel].first : paths[rel].second) = true;
+    }
+    if (ec) throw std::runtime_error(root.string() + ": cannot be read: " + ec.message());
+  };
+  scan(actual, true);
+  scan(expected, false);
+  Suite suite;
+  suite.name = "folder";
+  suite.file = actual;
+  suite.goldens = expected;
+  suite.goldens_given = true;
+  suite.bless_prefix = "aosuite bless --actual " + shell_quote(actual.string()) + " --expected " +
+                       shell_quote(expected.string());
+  suite.check_args =
+      "--actual " + shell_quote(actual.string()) + " --expected " + shell_quote(expected.string());
+  std::map<std::string, std::string> ids;
+  for (const auto& [rel, where] : paths) {
+    // sub/dir/a b.png -> sub__dir__a_b.png: a name for the report's folder.
+    std::string id;
+    for (const char ch : rel) {
+      id += ch == '/'                                     ? std::string("__")
+            : valid_name(std::string(1, ch)) || ch == '.' ? std::string(1, ch)
+                                                          : std::string("_");
+    }
+    if (id.front() == '.') id.front() = '_';
+    if (!valid_name(id)) {
+      throw std::runtime_error(printable((actual / rel).string()) + ": path too long for a case");
+    }
+    if (const auto [it, fresh] = ids.emplace(id, rel); !fresh) {
+      throw std::runtime_error(printable(
+          fmt::format("{} and {} both become case '{}'; rename one", it->second, rel, id)));
+    }
+    auto src = std::make_shared<ImageSource>();
+    src->path = rel;
+    src->golden_file = expected / rel;
+    src->files.push_back(actual / rel);
+    src->deleted = !where.first;
+    Case k;
+    k.id = id;
+    k.images = {"image"};
+    k.tolerance = tolerance;
+    k.source = std::move(src);
+    suite.cases.push_back(std::move(k));
   }
   return suite;
 }

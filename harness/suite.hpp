@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -27,8 +28,38 @@ struct Tolerance {
 // The images of a case that can be gated against goldens.
 inline constexpr std::array<const char*, 3> kImageNames{"no_ao", "with_ao", "ao_only"};
 
+// Where an image case's images come from instead of a scene: files a command writes, or files
+// already on disk. Each image is named by its file's stem (chart.png -> chart).
+struct ImageSource {
+  // argv, run without a shell in the case's output folder; {out}, {id}, {name}, {suite_dir},
+  // {width}, {height} and {<param>} are replaced (shell-quoted inside `sh -c SCRIPT`).
+  std::vector<std::string> command;
+  std::vector<std::string> outputs;           // per image: the file the command writes in {out}
+  std::vector<std::filesystem::path> inputs;  // files the command reads: their bytes are hashed
+  double timeout_seconds = 60;
+  std::vector<std::filesystem::path> files;  // per image, without a command: a file on disk
+  std::filesystem::path dir;                 // the suite's folder ({suite_dir}), absolute
+  // Folder mode: the one expected file that stands in for the goldens folder (may not exist),
+  // and whether the actual file is missing (the image was deleted).
+  std::filesystem::path golden_file;
+  bool deleted = false;
+  std::string path;  // folder mode: the relative path both folders share
+};
+
+// Replaces the {placeholders} of an image case's command (`{{` and `}}` are braces). Throws
+// std::invalid_argument naming an unknown placeholder. `quote`: shell-quote what is inserted.
+std::string expand_placeholders(std::string_view text,
+                                const std::map<std::string, std::string>& values, bool quote);
+
+struct Case;
+// An image case's placeholder values, {out} aside: {id}, {name}, {suite_dir}, {width},
+// {height} and each of its params.
+std::map<std::string, std::string> command_placeholders(const Case& k);
+
 struct Case {
-  std::string id;  // scene-view-technique-WxH[-name]; names the golden folder
+  std::string id;  // scene-view-technique-WxH[-name], or an image case's name; names its folder
+  std::shared_ptr<const ImageSource> source;         // set for image cases (no scene then)
+  nlohmann::json values = nlohmann::json::object();  // an image case's params, typed
   std::shared_ptr<const renderer::Scene> scene;
   std::string scene_source;  // the built-in name or the scene file, as the suite says it
   std::string view;
@@ -36,7 +67,7 @@ struct Case {
   renderer::AoParams params;
   std::map<std::string, std::string> param_overrides;  // as written in the suite, for reports
   int width = 0, height = 0;
-  std::vector<std::string> images;  // which of kImageNames are gated
+  std::vector<std::string> images;  // which of kImageNames are gated (image cases: every image)
   Tolerance tolerance;
 };
 
@@ -48,7 +79,16 @@ struct Suite {
   std::filesystem::path goldens;
   bool goldens_given = false;
   std::vector<Case> cases;
+  // "aosuite bless SUITE" or "aosuite bless --actual A --expected E": how commands name it.
+  std::string bless_prefix;
+  std::string check_args;  // what follows "aosuite check " to list its cases
 };
+
+// Folder mode (as reg-cli): one image case per PNG under `actual` or `expected`, paired by
+// relative path; the expected file is its golden. Throws std::runtime_error naming a folder
+// that cannot be read or two paths whose case ids collide.
+Suite folder_suite(const std::filesystem::path& actual, const std::filesystem::path& expected,
+                   const Tolerance& tolerance);
 
 // Whether `name` is safe as one path component of a suite name, case id or variant tag:
 // letters, digits, '-', '_', '.', not starting with '.' (so never "." or ".." nor hidden), at

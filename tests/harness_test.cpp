@@ -147,6 +147,97 @@ TEST_F(SuiteFile, NamesThatWouldLeaveTheirFoldersAreRejected) {
   }
 }
 
+TEST_F(SuiteFile, ImageCasesNameTheirImagesAndKeepTypedParams) {
+  fs::create_directories(dir_ / "suites" / "shots");
+  std::ofstream(dir_ / "suites" / "draw.py") << "";
+  const Suite s = load_suite(write(R"(
+[defaults]
+width = 64
+params = { quality = 3 }
+[[case]]
+name = "chart"
+command = ["python3", "{suite_dir}/draw.py", "--out", "{out}", "--w", "{width}", "{quality}{{x}}"]
+outputs = ["chart.png", "sub/legend.png"]
+inputs = ["draw.py"]
+timeout = 5
+params = { gamma = 2.2, label = "a b", on = true, list = [1, 2] }
+[[case]]
+name = "photo"
+files = ["shots/photo.png"]
+)"));
+  ASSERT_EQ(s.cases.size(), 2u);
+  const Case& c = s.cases[0];
+  ASSERT_TRUE(c.source);
+  EXPECT_EQ(c.id, "chart");
+  EXPECT_EQ(c.images, (std::vector<std::string>{"chart", "legend"}));
+  EXPECT_EQ(c.source->outputs[1], "sub/legend.png");
+  EXPECT_EQ(c.source->timeout_seconds, 5);
+  EXPECT_EQ(c.values["quality"], 3);
+  EXPECT_EQ(c.values["gamma"], 2.2);
+  EXPECT_EQ(c.values["on"], true);
+  EXPECT_EQ(c.values["list"], nlohmann::json::array({1, 2}));
+  std::map<std::string, std::string> v = command_placeholders(c);
+  v["out"] = "/o";
+  EXPECT_EQ(expand_placeholders(c.source->command[6], v, false), "3{x}");
+  EXPECT_EQ(expand_placeholders("{label}", v, true), "'a b'");
+  EXPECT_EQ(expand_placeholders("{width}x{height}", v, false), "64x180");
+  EXPECT_THROW(expand_placeholders("{nope}", v, false), std::invalid_argument);
+  EXPECT_THROW(expand_placeholders("{out", v, false), std::invalid_argument);
+  EXPECT_EQ(s.cases[1].images, (std::vector<std::string>{"photo"}));
+  EXPECT_EQ(s.cases[1].source->files[0], dir_ / "suites" / "shots/photo.png");
+}
+
+TEST_F(SuiteFile, MalformedImageCasesNameFileLineAndReason) {
+  const std::string head = "[[case]]\nname = \"x\"\n";
+  EXPECT_NE(
+      error_of("[[case]]\nfiles = [\"a.png\"]\n").find("s.toml:1:1: an image case needs name"),
+      std::string::npos);
+  EXPECT_NE(error_of(head + "command = [\"true\"]\n").find("a command case needs outputs"),
+            std::string::npos);
+  EXPECT_NE(error_of(head + "files = [\"a.png\"]\ncommand = [\"true\"]\n").find("command or files"),
+            std::string::npos);
+  EXPECT_NE(error_of(head + "files = [\"a.jpg\"]\n").find("s.toml:3:9: 'a.jpg' is not a .png"),
+            std::string::npos);
+  EXPECT_NE(error_of(head + "files = [\"a/x.png\", \"b/x.png\"]\n").find("two images named 'x'"),
+            std::string::npos);
+  EXPECT_NE(error_of(head + "files = [\"golden_x.png\"]\n").find("golden_"), std::string::npos);
+  EXPECT_NE(error_of(head + "command = [\"true\"]\noutputs = [\"../x.png\"]\n")
+                .find("must be a relative path inside"),
+            std::string::npos);
+  EXPECT_NE(error_of(head + "command = [\"true\"]\noutputs = [\"x.png\"]\ninputs = [\"no.txt\"]\n")
+                .find("s.toml:5:10: no input file"),
+            std::string::npos);
+  EXPECT_NE(error_of(head + "files = [\"x.png\"]\nscene = \"corner\"\n").find("takes no 'scene'"),
+            std::string::npos);
+  EXPECT_NE(error_of(head + "files = [\"x.png\"]\ntimeout = 3\n").find("belongs to a command case"),
+            std::string::npos);
+  EXPECT_NE(error_of(head + "command = [\"a\", \"{oops}\"]\noutputs = [\"x.png\"]\n")
+                .find("s.toml:3:11: unknown placeholder '{oops}'"),
+            std::string::npos);
+}
+
+TEST(FolderSuite, PairsPngFilesByRelativePath) {
+  const test::TempDir dir;
+  fs::create_directories(dir.path() / "a" / "sub");
+  fs::create_directories(dir.path() / "e" / "sub");
+  for (const char* f : {"a/same.png", "a/sub/x y.png", "a/new.png", "e/same.png", "e/sub/x y.png",
+                        "e/gone.png", "a/notes.txt", "a/.hidden.png"}) {
+    std::ofstream(dir.path() / f) << "x";
+  }
+  const Suite s = folder_suite(dir.path() / "a", dir.path() / "e", {});
+  std::map<std::string, std::pair<std::string, bool>> got;
+  for (const Case& c : s.cases) got[c.id] = {c.source->path, c.source->deleted};
+  EXPECT_EQ(got.size(), 4u);
+  EXPECT_EQ(got.at("same.png"), std::make_pair(std::string("same.png"), false));
+  EXPECT_EQ(got.at("sub__x_y.png"), std::make_pair(std::string("sub/x y.png"), false));
+  EXPECT_EQ(got.at("new.png").second, false);
+  EXPECT_EQ(got.at("gone.png").second, true);
+  EXPECT_NE(s.bless_prefix.find("aosuite bless --actual "), std::string::npos);
+  EXPECT_THROW(folder_suite(dir.path() / "missing", dir.path() / "e", {}), std::runtime_error);
+  std::ofstream(dir.path() / "a" / "sub__x_y.png") << "x";  // collides with sub/x y.png
+  EXPECT_THROW(folder_suite(dir.path() / "a", dir.path() / "e", {}), std::runtime_error);
+}
+
 TEST(Goldens, PlatformKeyIsTheRendererFieldSanitised) {
   EXPECT_EQ(
       platform_key("Mesa | llvmpipe (LLVM 15.0.6, 256 bits) | 4.5 (Core Profile) Mesa 22.3.6"),
@@ -462,7 +553,9 @@ TEST(CaseHash, EveryParameterChangesTheInputHash) {
 TEST(Results, RoundTripThroughJson) {
   CaseResult c;
   c.id = "a-b-sao-8x8", c.scene = "a", c.view = "b", c.technique = "sao", c.width = c.height = 8;
-  c.params = {{"radius", "10"}};
+  c.params = {{"radius", 10}, {"blur", "none"}, {"weights", nlohmann::json::array({1, 0.5})}};
+  c.kind = "command", c.source = "draw {out}", c.exit_status = 3, c.attempts = 2;
+  c.command_stderr = "line 1\nline 2\n";
   c.tolerance.mode = resemble::Mode::kAntialiasing, c.tolerance.ignore = {{1, 2, 3, 4}};
   c.status = Status::kFail, c.message = "with_ao: mismatch";
   ImageVerdict v;
@@ -479,7 +572,14 @@ TEST(Results, RoundTripThroughJson) {
   const RunResults back = run_from_json(to_json(r));
   EXPECT_EQ(to_json(back), to_json(r));
   EXPECT_EQ(back.cases[0].tolerance.mode, resemble::Mode::kAntialiasing);
+  EXPECT_EQ(back.cases[0].params.at("radius"), 10);  // a number, not "10"
+  EXPECT_EQ(back.cases[0].command_stderr, "line 1\nline 2\n");
   EXPECT_EQ(exit_code(count(back)), 1);
+  r.cases[0].status = Status::kFlaky;
+  const RunResults flaky = run_from_json(to_json(r));
+  EXPECT_EQ(flaky.cases[0].status, Status::kFlaky);
+  EXPECT_EQ(count(flaky).flaky, 1);
+  EXPECT_EQ(exit_code(count(flaky)), 0);  // flaky cases passed in the end
 }
 
 TEST(HtmlReport, LinksTheLatestSweepBesideIt) {

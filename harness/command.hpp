@@ -1,0 +1,25 @@
+// Runs an image case's command: argv without a shell, in a given folder, with a time limit.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace aosuite::harness {
+
+struct CommandOutcome {
+  int exit_status = -1;  // the exit status; 128 + N when killed by signal N
+  bool timed_out = false;
+  std::string stderr_tail;  // the last 4 KiB of what it wrote to stderr
+};
+
+// Runs `argv` (argv[0] looked up in PATH when it has no '/') in `cwd` with stdin from
+// /dev/null, stdout and stderr into the given files, and `env` added to this process's
+// environment. The command runs in its own process group; after `timeout_seconds` the whole
+// group is killed. Throws std::runtime_error when it cannot be started (naming argv[0]).
+CommandOutcome run_command(const std::vector<std::string>& argv, const std::filesystem::path& cwd,
+                           const std::filesystem::path& stdout_file,
+                           const std::filesystem::path& stderr_file, double timeout_seconds,
+                           const std::vector<std::string>& env);
+
+}  // namespace aosuite::harness

@@ -1,0 +1,383 @@
+// Image cases (images a command writes, or files on disk), folder mode, approving from the
+// report, --json and --retries, end to end through the CLI. None of these render a scene, so
+// they need no OpenGL.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+
+#include "compare/opencv.hpp"
+#include "png_fixture.hpp"
+#include "process.hpp"
+
+namespace aosuite {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string read_text(const fs::path& p) {
+  std::stringstream s;
+  s << std::ifstream(p).rdbuf();
+  return s.str();
+}
+
+cv::Mat flat(int w, int h, cv::Scalar rgba) { return cv::Mat(h, w, CV_8UC4, rgba); }
+
+class ImageCases : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    fs::create_directories(dir_ / "s");
+    // The "renderer": a script that draws the chart in the colour its input file names (a
+    // copy of a prepared PNG) and can be told to fail or to dawdle.
+    write_png_rgba8(dir_ / "s" / "red.png", flat(8, 6, {255, 0, 0, 255}));
+    cv::Mat green = flat(8, 6, {255, 0, 0, 255});
+    green.rowRange(0, 3).setTo(cv::Scalar(0, 255, 0, 255));  // half changed: a diff to show
+    write_png_rgba8(dir_ / "s" / "green.png", green);
+    std::ofstream(dir_ / "s" / "colour.txt") << "red";
+    std::ofstream(dir_ / "s" / "draw.sh") << R"SH(#!/bin/sh
+set -e
+out="$1"; here="$2"
+if [ -e "$here/fail" ]; then echo "draw: cannot draw today" >&2; exit 3; fi
+cp "$here/$(cat "$here/colour.txt").png" "$out/chart.png"
+echo "drew $(cat "$here/colour.txt")" >&2
+)SH";
+    std::ofstream(dir_ / "s" / "t.toml") << R"(
+[defaults]
+width = 8
+height = 6
+
+[[case]]
+name = "chart"
+command = ["sh", "{suite_dir}/draw.sh", "{out}", "{suite_dir}"]
+outputs = ["chart.png"]
+inputs = ["draw.sh", "colour.txt"]
+timeout = 20
+)";
+  }
+  test::Outcome aosuite(const std::string& args) {
+    return test::run_shell("cd " + dir_.path().string() + " && " + AOSUITE_BIN + " " + args,
+                           dir_.path());
+  }
+  std::vector<unsigned char> golden() const {
+    return read_file(dir_ / "goldens" / "t" / "chart" / "chart.png");
+  }
+  test::TempDir dir_;
+};
+
+// The loop a user runs: NEW, approve, PASS (reused), a changed input FAILs with a report, the
+// report's image is approved without running the command again, PASS.
+TEST_F(ImageCases, ACommandsImagesPassFailAndAreApprovedFromTheReport) {
+  test::Outcome r = aosuite("check s/t.toml --junit junit.xml");
+  EXPECT_EQ(r.rc, 1) << r.out << r.err;
+  EXPECT_NE(r.out.find("NEW   chart"), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(dir_ / "goldens"));
+  r = aosuite("bless s/t.toml --failed");
+  EXPECT_EQ(r.rc, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("BLESSED chart"), std::string::npos) << r.out;
+  EXPECT_EQ(decode_png_rgba8(golden(), "golden").at<cv::Vec4b>(0, 0), cv::Vec4b(255, 0, 0, 255));
+
+  r = aosuite("check s/t.toml");
+  EXPECT_EQ(r.rc, 0) << r.out << r.err;
+  r = aosuite("check s/t.toml");
+  EXPECT_EQ(r.rc, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("(unchanged, reused)"), std::string::npos) << r.out;
+  // A passing case's golden is not rewritten by a plain bless, only with --force.
+  r = aosuite("bless s/t.toml");
+  EXPECT_EQ(r.rc, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("KEPT chart"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("0 of 1 cases blessed"), std::string::npos) << r.out;
+  EXPECT_NE(aosuite("bless s/t.toml --force").out.find("BLESSED chart"), std::string::npos);
+
+  // A declared input changes: the case is run again (not reused) and fails.
+  std::ofstream(dir_ / "s" / "colour.txt", std::ios::trunc) << "green";
+  const auto before = golden();
+  r = aosuite("check s/t.toml --junit junit.xml");
+  EXPECT_EQ(r.rc, 1) << r.out << r.err;
+  EXPECT_NE(r.out.find("FAIL  chart"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("reused"), std::string::npos) << r.out;
+  EXPECT_EQ(golden(), before);
+  const fs::path c = dir_ / "reports" / "t" / "cases" / "chart";
+  EXPECT_TRUE(fs::exists(c / "diff_chart.png"));
+  EXPECT_TRUE(fs::exists(c / "golden_chart.png"));
+  const auto results = nlohmann::json::parse(read_text(dir_ / "reports" / "t" / "results.json"));
+  EXPECT_EQ(results["cases"][0]["kind"], "command");
+  EXPECT_EQ(results["cases"][0]["exit_status"], 0);
+  EXPECT_NE(results["cases"][0]["command_stderr"].get<std::string>().find("drew green"),
+            std::string::npos);
+  EXPECT_NE(read_text(dir_ / "junit.xml").find("failures=\"1\""), std::string::npos);
+  EXPECT_NE(read_text(dir_ / "reports" / "t" / "index.html").find("chart"), std::string::npos);
+
+  // Approve from the report: the reviewed image, not a new run (the command now fails).
+  std::ofstream(dir_ / "s" / "fail") << "";
+  r = aosuite("bless s/t.toml --failed");
+  EXPECT_EQ(r.rc, 0) << r.out << r.err;
+  EXPECT_EQ(decode_png_rgba8(golden(), "golden").at<cv::Vec4b>(0, 0), cv::Vec4b(0, 255, 0, 255));
+  r = aosuite("bless s/t.toml --failed");  // the report has not changed: it is still FAIL...
+  EXPECT_EQ(r.rc, 0) << r.out << r.err;
+  fs::remove(dir_ / "s" / "fail");
+  r = aosuite("check s/t.toml");
+  EXPECT_EQ(r.rc, 0) << r.out << r.err;
+  r = aosuite("bless s/t.toml --failed");  // ...now nothing is left to accept
+  EXPECT_EQ(r.rc, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("nothing to accept"), std::string::npos) << r.out;
+}
+
+// A command that fails, hangs or writes nothing is an ERROR (exit 2) with its exit status and
+// stderr in the report, never NEW or PASS.
+TEST_F(ImageCases, CommandFailuresAreErrorsWithExitStatusAndStderr) {
+  std::ofstream(dir_ / "s" / "fail") << "";
+  test::Outcome r = aosuite("check s/t.toml");
+  EXPECT_EQ(r.rc, 2) << r.out << r.err;
+  EXPECT_NE(r.out.find("ERROR chart"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("command exited with status 3: draw: cannot draw today"), std::string::npos)
+      << r.out;
+  auto results = nlohmann::json::parse(read_text(dir_ / "reports" / "t" / "results.json"));
+  EXPECT_EQ(results["cases"][0]["exit_status"], 3);
+  EXPECT_NE(results["cases"][0]["command_stderr"].get<std::string>().find("cannot draw"),
+            std::string::npos);
+  EXPECT_NE(read_text(dir_ / "reports" / "t" / "index.html").find("cannot draw today"),
+            std::string::npos);
+  EXPECT_EQ(aosuite("bless s/t.toml").rc, 2);
+  EXPECT_FALSE(fs::exists(dir_ / "goldens" / "t" / "chart" / "chart.png"));
+
+  std::ofstream(dir_ / "s" / "t.toml", std::ios::app) << R"(
+[[case]]
+name = "hangs"
+command = ["sleep", "30"]
+outputs = ["x.png"]
+timeout = 0.5
+
+[[case]]
+name = "silent"
+command = ["true"]
+outputs = ["x.png"]
+)";
+  const auto t0 = std::chrono::steady_clock::now();
+  r = aosuite("check s/t.toml --filter 'hangs|silent' --jobs 2");
+  EXPECT_LT(std::chrono::steady_clock::now() - t0, std::chrono::seconds(10));
+  EXPECT_EQ(r.rc, 2) << r.out << r.err;
+  EXPECT_NE(r.out.find("command timed out after 0.5 s and was killed"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("the command did not write x.png"), std::string::npos) << r.out;
+}
+
+// Case fields go into the argv as they are; inside `sh -c` they are shell-quoted, so a field
+// is never shell syntax.
+TEST_F(ImageCases, PlaceholdersAreArgumentsNeverShellText) {
+  std::ofstream(dir_ / "s" / "q.toml") << R"(
+[[case]]
+name = "quoted"
+params = { label = "$(touch pwned); 'x' \"y\"", n = 3 }
+command = ["sh", "-c", "printf '%s|%s' {label} {n} > label.txt && cp {suite_dir}/red.png {out}/x.png"]
+outputs = ["x.png"]
+)";
+  const test::Outcome r = aosuite("check s/q.toml");
+  EXPECT_EQ(r.rc, 1) << r.out << r.err;  // NEW
+  EXPECT_FALSE(fs::exists(dir_ / "pwned"));
+  EXPECT_FALSE(fs::exists(dir_ / "reports" / "q" / "cases" / "quoted" / ".out" / "pwned"));
+  EXPECT_EQ(read_text(dir_ / "reports" / "q" / "cases" / "quoted" / ".out" / "label.txt"),
+            "$(touch pwned); 'x' \"y\"|3");
+  const auto results = nlohmann::json::parse(read_text(dir_ / "reports" / "q" / "results.json"));
+  EXPECT_EQ(results["cases"][0]["params"]["n"], 3);  // typed, not "3"
+
+  std::ofstream(dir_ / "s" / "bad.toml") << R"(
+[[case]]
+name = "bad"
+command = ["sh", "{nope}"]
+outputs = ["x.png"]
+)";
+  const test::Outcome bad = aosuite("check s/bad.toml");
+  EXPECT_EQ(bad.rc, 2);
+  EXPECT_NE(bad.err.find("s/bad.toml:4:"), std::string::npos) << bad.err;
+  EXPECT_NE(bad.err.find("unknown placeholder '{nope}'"), std::string::npos) << bad.err;
+  EXPECT_FALSE(fs::exists(dir_ / "reports" / "bad"));
+}
+
+// Images already on disk are gated the same way.
+TEST_F(ImageCases, FilesOnDiskAreGatedLikeRenders) {
+  fs::create_directories(dir_ / "s" / "out");
+  fs::copy_file(dir_ / "s" / "red.png", dir_ / "s" / "out" / "a.png");
+  std::ofstream(dir_ / "s" / "f.toml") << R"(
+[[case]]
+name = "disk"
+files = ["out/a.png"]
+[case.tolerance]
+max_mismatch_percent = 10
+)";
+  EXPECT_EQ(aosuite("check s/f.toml").rc, 1);
+  EXPECT_EQ(aosuite("bless s/f.toml").rc, 0);
+  EXPECT_TRUE(fs::exists(dir_ / "goldens" / "f" / "disk" / "a.png"));
+  EXPECT_EQ(aosuite("check s/f.toml").rc, 0);
+  cv::Mat m = read_png_rgba8(dir_ / "s" / "out" / "a.png");
+  m.at<cv::Vec4b>(0, 0) = {0, 0, 255, 255};  // 1 of 48 pixels: within 10 %
+  write_png_rgba8(dir_ / "s" / "out" / "a.png", m);
+  test::Outcome r = aosuite("check s/f.toml");
+  EXPECT_EQ(r.rc, 0) << r.out;
+  EXPECT_NE(r.out.find("2.08%"), std::string::npos) << r.out;
+  fs::copy_file(dir_ / "s" / "green.png", dir_ / "s" / "out" / "a.png",
+                fs::copy_options::overwrite_existing);
+  EXPECT_EQ(aosuite("check s/f.toml").rc, 1);
+  std::ofstream(dir_ / "s" / "out" / "a.png", std::ios::trunc) << "not a png";
+  r = aosuite("check s/f.toml");
+  EXPECT_EQ(r.rc, 2) << r.out;
+  EXPECT_NE(r.out.find("ERROR disk"), std::string::npos) << r.out;
+}
+
+// Folder mode, as reg-cli: two folders of PNGs paired by relative path; changed, new and
+// deleted images; bless makes the expected folder match.
+TEST_F(ImageCases, FolderModeReportsChangedNewAndDeletedAndBlessAcceptsThem) {
+  for (const char* d : {"actual/sub", "expected/sub", "empty1", "empty2"}) {
+    fs::create_directories(dir_ / d);
+  }
+  const fs::path red = dir_ / "s" / "red.png", green = dir_ / "s" / "green.png";
+  for (const auto& [from, to] :
+       std::vector<std::pair<fs::path, const char*>>{{red, "actual/same.png"},
+                                                     {red, "expected/same.png"},
+                                                     {red, "actual/sub/deep one.png"},
+                                                     {red, "expected/sub/deep one.png"},
+                                                     {green, "actual/changed.png"},
+                                                     {red, "expected/changed.png"},
+                                                     {green, "actual/new.png"},
+                                                     {red, "expected/gone.png"}}) {
+    fs::copy_file(from, dir_ / to);
+  }
+  std::ofstream(dir_ / "actual" / "notes.txt") << "not an image";
+  test::Outcome r = aosuite("check --actual actual --expected expected --report rep --junit j.xml");
+  EXPECT_EQ(r.rc, 1) << r.out << r.err;
+  EXPECT_NE(r.out.find("5 images: 2 unchanged, 1 changed, 1 new, 1 deleted, 0 errors"),
+            std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("sub__deep_one.png  sub/deep one.png"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("deleted: only in the expected folder"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("aosuite bless --actual actual --expected expected --filter "
+                       "'^(changed\\.png|gone\\.png|new\\.png)$'"),
+            std::string::npos)
+      << r.out;
+  const auto results = nlohmann::json::parse(read_text(dir_ / "rep" / "results.json"));
+  EXPECT_EQ(results["cases"].size(), 5u);
+  EXPECT_EQ(results["cases"][0]["kind"], "folder");
+  EXPECT_TRUE(fs::exists(dir_ / "rep" / "index.html"));
+  EXPECT_TRUE(fs::exists(dir_ / "rep" / "cases" / "changed.png" / "diff_image.png"));
+  EXPECT_NE(read_text(dir_ / "j.xml").find("tests=\"5\" failures=\"3\""), std::string::npos);
+  const auto same_time = fs::last_write_time(dir_ / "expected" / "same.png");
+
+  // Accept from the report: changed and new copied, the deleted one removed, the rest as it was.
+  r = aosuite("bless --actual actual --expected expected --failed --report rep");
+  EXPECT_EQ(r.rc, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("3 of 3 cases blessed"), std::string::npos) << r.out;
+  EXPECT_EQ(read_file(dir_ / "expected" / "changed.png"), read_file(green));
+  EXPECT_EQ(read_file(dir_ / "expected" / "new.png"), read_file(green));
+  EXPECT_FALSE(fs::exists(dir_ / "expected" / "gone.png"));
+  EXPECT_EQ(fs::last_write_time(dir_ / "expected" / "same.png"), same_time);
+  r = aosuite("check --actual actual --expected expected --report rep");
+  EXPECT_EQ(r.rc, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("4 images: 4 unchanged, 0 changed, 0 new, 0 deleted"), std::string::npos)
+      << r.out;
+
+  // Plain bless (no report) accepts what the folders hold now.
+  fs::copy_file(red, dir_ / "actual" / "new.png", fs::copy_options::overwrite_existing);
+  EXPECT_EQ(aosuite("check --actual actual --expected expected").rc, 1);
+  r = aosuite("bless --actual actual --expected expected");
+  EXPECT_EQ(r.rc, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("1 of 4 cases blessed"), std::string::npos) << r.out;
+  EXPECT_EQ(read_file(dir_ / "expected" / "new.png"), read_file(red));
+
+  // Nothing to compare is not green; half a folder pair is a one-line error.
+  for (const char* bad : {"check --actual empty1 --expected empty2", "check --actual actual",
+                          "check s/t.toml --actual actual --expected expected",
+                          "check --actual nowhere --expected expected"}) {
+    r = aosuite(bad);
+    EXPECT_EQ(r.rc, 2) << bad << "\n" << r.out << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << bad << "\n" << r.err;
+  }
+}
+
+// --json: one object per case as it finishes, then a summary; `scenes --json` likewise.
+TEST_F(ImageCases, JsonOutputIsOneObjectPerCaseThenASummary) {
+  std::ofstream(dir_ / "s" / "t.toml", std::ios::app) << R"(
+[[case]]
+name = "disk"
+files = ["red.png"]
+params = { quality = 0.75, n = 2, label = "x" }
+)";
+  const test::Outcome r = aosuite("check s/t.toml --json");
+  EXPECT_EQ(r.rc, 1) << r.out << r.err;
+  std::vector<nlohmann::json> lines;
+  std::stringstream in(r.out);
+  for (std::string line; std::getline(in, line);) {
+    ASSERT_NO_THROW(lines.push_back(nlohmann::json::parse(line))) << line;
+  }
+  ASSERT_EQ(lines.size(), 3u) << r.out;
+  for (int i : {0, 1}) {
+    EXPECT_EQ(lines[i]["type"], "case");
+    EXPECT_EQ(lines[i]["status"], "NEW");
+  }
+  const nlohmann::json& disk = lines[0]["id"] == "disk" ? lines[0] : lines[1];
+  EXPECT_EQ(disk["params"]["quality"], 0.75);
+  EXPECT_EQ(disk["params"]["n"], 2);
+  EXPECT_EQ(disk["params"]["label"], "x");
+  EXPECT_EQ(lines[2]["type"], "summary");
+  EXPECT_EQ(lines[2]["new"], 2);
+  EXPECT_EQ(lines[2]["exit_status"], 1);
+  EXPECT_EQ(lines[2]["bless_command"], "aosuite bless s/t.toml --filter '^(chart|disk)$'");
+  EXPECT_EQ(lines[2]["approve_failed"], "aosuite bless s/t.toml --failed --report reports/t");
+
+  const test::Outcome scenes = aosuite("scenes --json");
+  EXPECT_EQ(scenes.rc, 0) << scenes.err;
+  const nlohmann::json j = nlohmann::json::parse(scenes.out);
+  bool corner = false;
+  for (const nlohmann::json& s : j["scenes"]) {
+    if (s["name"] == "corner") {
+      corner = true;
+      EXPECT_EQ(s["kind"], "built-in");
+      EXPECT_FALSE(s["views"].empty());
+      EXPECT_TRUE(s["views"][0]["eye"].is_array());
+      EXPECT_TRUE(s["views"][0]["fovy_degrees"].is_number());
+    }
+  }
+  EXPECT_TRUE(corner) << scenes.out;
+}
+
+// --retries: a case that fails and then passes is FLAKY, apart from pass and fail, in the
+// console, results.json and JUnit; the run is green. Without retries it fails.
+TEST_F(ImageCases, RetriesReportFlakyCasesApart) {
+  // Draws the wrong chart on every other run.
+  std::ofstream(dir_ / "s" / "t.toml", std::ios::app) << R"SH(
+[[case]]
+name = "wobbly"
+command = ["sh", "-c", "if [ -e {suite_dir}/odd ]; then rm {suite_dir}/odd; cp {suite_dir}/red.png {out}/w.png; else touch {suite_dir}/odd; cp {suite_dir}/green.png {out}/w.png; fi"]
+outputs = ["w.png"]
+)SH";
+  std::ofstream(dir_ / "s" / "odd") << "";
+  ASSERT_EQ(aosuite("bless s/t.toml").rc, 0);  // wobbly's golden is red
+  test::Outcome r = aosuite("check s/t.toml --no-reuse");
+  EXPECT_EQ(r.rc, 1) << r.out << r.err;  // green this time
+  fs::remove(dir_ / "s" / "odd");        // green first, then red
+  r = aosuite("check s/t.toml --no-reuse --retries 2 --junit j.xml");
+  EXPECT_EQ(r.rc, 0) << r.out << r.err;  // red on the second attempt
+  EXPECT_NE(r.out.find("FLAKY wobbly"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("(2 attempts)"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("2 cases: 1 passed, 0 failed, 0 new, 0 errors, 1 flaky"), std::string::npos)
+      << r.out;
+  const auto results = nlohmann::json::parse(read_text(dir_ / "reports" / "t" / "results.json"));
+  for (const nlohmann::json& c : results["cases"]) {
+    if (c["id"] != "wobbly") continue;
+    EXPECT_EQ(c["status"], "FLAKY");
+    EXPECT_EQ(c["attempts"], 2);
+    EXPECT_NE(c["message"].get<std::string>().find("failed, then passed on attempt 2"),
+              std::string::npos);
+  }
+  const std::string junit = read_text(dir_ / "j.xml");
+  EXPECT_NE(junit.find("failures=\"0\""), std::string::npos) << junit;
+  EXPECT_NE(junit.find("<flakyFailure"), std::string::npos) << junit;
+  // Retries never hide a case that keeps failing.
+  std::ofstream(dir_ / "s" / "colour.txt", std::ios::trunc) << "green";
+  r = aosuite("check s/t.toml --retries 2");
+  EXPECT_EQ(r.rc, 1) << r.out;
+  EXPECT_NE(r.out.find("FAIL  chart"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("(3 attempts)"), std::string::npos) << r.out;
+}
+
+}  // namespace
+}  // namespace aosuite
