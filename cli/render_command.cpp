@@ -74,27 +74,67 @@ void print_views(const std::vector<rd::View>& views) {
   }
 }
 
-int run_scenes(const std::vector<std::string>& files) {
+nlohmann::json views_json(const std::vector<rd::View>& views) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const rd::View& v : views) {
+    out.push_back({{"name", v.name},
+                   {"eye", {v.eye.x, v.eye.y, v.eye.z}},
+                   {"target", {v.target.x, v.target.y, v.target.z}},
+                   {"up", {v.up.x, v.up.y, v.up.z}},
+                   {"fovy_degrees", v.fovy_degrees},
+                   {"near", v.near}});
+  }
+  return out;
+}
+
+// `--json`: one object, {"scenes": [{name, kind, file?, meshes?, triangles?, views: [...]}]}.
+int run_scenes(const std::vector<std::string>& files, bool json) {
+  nlohmann::json scenes = nlohmann::json::array();
   if (!files.empty()) {
     for (const std::string& f : files) {
       const rd::Scene scene = rd::load_scene(f);
       std::size_t triangles = 0;
       for (const rd::Mesh& m : scene.meshes) triangles += m.triangles.size();
+      if (json) {
+        scenes.push_back({{"name", scene.name},
+                          {"kind", "file"},
+                          {"file", f},
+                          {"meshes", scene.meshes.size()},
+                          {"triangles", triangles},
+                          {"views", views_json(scene.views)}});
+        continue;
+      }
       fmt::print("{}: {} meshes, {} triangles\n", f, scene.meshes.size(), triangles);
       print_views(scene.views);
     }
+    if (json) fmt::print("{}\n", nlohmann::json{{"scenes", scenes}}.dump());
     return kExitSame;
   }
   for (const std::string& name : rd::builtin_scene_names()) {
+    if (json) {
+      scenes.push_back({{"name", name},
+                        {"kind", "built-in"},
+                        {"views", views_json(rd::builtin_scene_views(name))}});
+      continue;
+    }
     fmt::print("{}\n", name);
     print_views(rd::builtin_scene_views(name));
   }
   for (const std::string& name : rd::downloadable_scene_names()) {
     const fs::path file = rd::downloadable_scene_file(name);
+    if (json) {
+      scenes.push_back({{"name", name},
+                        {"kind", "downloadable"},
+                        {"file", file.string()},
+                        {"fetched", fs::exists(file)},
+                        {"views", views_json(rd::builtin_scene_views(name))}});
+      continue;
+    }
     fmt::print("{} ({})\n", name,
                fs::exists(file) ? file.string() : "not fetched: run scripts/fetch_dragon.sh");
     print_views(rd::builtin_scene_views(name));
   }
+  if (json) fmt::print("{}\n", nlohmann::json{{"scenes", scenes}}.dump());
   return kExitSame;
 }
 
@@ -103,8 +143,10 @@ int run_scenes(const std::vector<std::string>& files) {
 void add_scenes_command(CLI::App& app, int& rc) {
   auto files = std::make_shared<std::vector<std::string>>();
   CLI::App* cmd = app.add_subcommand("scenes", "List built-in scenes and their views");
+  auto json = std::make_shared<bool>(false);
   cmd->add_option("files", *files, "scene files (.toml) to check and list instead");
-  guarded(cmd, rc, "scenes", [files] { return run_scenes(*files); });
+  cmd->add_flag("--json", *json, "print the scenes and their views as one JSON object");
+  guarded(cmd, rc, "scenes", [files, json] { return run_scenes(*files, *json); });
 }
 
 void add_render_command(CLI::App& app, int& rc) {
