@@ -268,6 +268,8 @@ int run_merge(const std::string& out, const std::vector<std::string>& shards,
   hs::RunResults merged = parts.front();
   merged.cases.clear();
   merged.shard.clear();
+  merged.approve_prefix =
+      merged.bless_prefix + " --from-report --report " + hs::shell_quote(fs::path(out).string());
   for (std::size_t i = 0; i < parts.size(); ++i) {
     const fs::path dir = shards[i];
     for (hs::CaseResult& c : parts[i].cases) {

@@ -3,11 +3,15 @@
 #include <fmt/format.h>
 #include <xxhash.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <string_view>
 
 #include "compare/image_io.hpp"
+#include "compare/opencv.hpp"
 #include "harness/escape.hpp"
 
 namespace aosuite::harness {
@@ -35,24 +39,69 @@ std::string base64(std::span<const unsigned char> in) {
   return out;
 }
 
+// Whether `rel` names a plain file inside `dir` (no link, no ..): a report never shows
+// anything else on the machine.
+bool inside(const fs::path& dir, const std::string& rel) {
+  std::error_code ec;
+  const fs::path r = fs::path(rel).lexically_normal();
+  return !rel.empty() && r.is_relative() && !r.empty() && *r.begin() != ".." &&
+         fs::is_regular_file(fs::symlink_status(dir / r, ec));
+}
+
+// A thumbnail of `rel` (relative to `dir`) at most kThumb pixels wide and high: the image
+// itself when it is that small, else thumb_<name> beside it (made again when older than it).
+constexpr int kThumbW = 160, kThumbH = 120;
+std::string thumbnail(const fs::path& dir, const std::string& rel) {
+  if (!inside(dir, rel)) return "";
+  const fs::path file = dir / rel;
+  try {
+    const std::vector<unsigned char> bytes = read_file(file);
+    const ImageSize size = check_png(bytes, file.string());
+    if (size.width <= kThumbW && size.height <= kThumbH) return rel;
+    const std::string name = "thumb_" + file.filename().string();
+    const fs::path thumb = file.parent_path() / name;
+    std::error_code ec;
+    if (fs::exists(thumb, ec) && fs::last_write_time(thumb, ec) >= fs::last_write_time(file, ec)) {
+      return fs::path(rel).parent_path().string() + "/" + name;
+    }
+    const cv::Mat img = decode_png_rgba8(bytes, file.string());
+    const int f = std::max((img.cols + kThumbW - 1) / kThumbW, (img.rows + kThumbH - 1) / kThumbH);
+    cv::Mat small((img.rows + f - 1) / f, (img.cols + f - 1) / f, CV_8UC4);
+    for (int y = 0; y < small.rows; ++y) {
+      for (int x = 0; x < small.cols; ++x) {
+        int sum[4] = {0, 0, 0, 0}, count = 0;
+        for (int yy = y * f; yy < std::min(img.rows, (y + 1) * f); ++yy) {
+          for (int xx = x * f; xx < std::min(img.cols, (x + 1) * f); ++xx) {
+            const cv::Vec4b p = img.at<cv::Vec4b>(yy, xx);
+            for (int k = 0; k < 4; ++k) sum[k] += p[k];
+            ++count;
+          }
+        }
+        for (int k = 0; k < 4; ++k) {
+          small.at<cv::Vec4b>(y, x)[k] = static_cast<unsigned char>((sum[k] + count / 2) / count);
+        }
+      }
+    }
+    const std::vector<unsigned char> png = encode_png_rgba8(small, 6);
+    write_report_file(thumb, png);
+    return fs::path(rel).parent_path().string() + "/" + name;
+  } catch (const std::exception&) {
+    return "";  // an unreadable image gets no thumbnail; the case still shows why
+  }
+}
+
 // Collects the pictures, each stored once under its content hash.
 class Pictures {
  public:
   explicit Pictures(fs::path cases_dir) : dir_(std::move(cases_dir)) {}
-  // An <img> showing `rel` (relative to cases/), or a note when the file is missing.
-  std::string img(const std::string& rel, std::string_view cls, std::string_view alt) {
-    // Only a plain file inside cases/: a report never embeds anything else on the machine.
-    const fs::path file = dir_ / rel;
-    std::error_code ec;
-    const fs::path r = fs::path(rel).lexically_normal();
-    const bool inside = !rel.empty() && r.is_relative() && !r.empty() && *r.begin() != "..";
-    if (!inside || !fs::is_regular_file(fs::symlink_status(file, ec))) {
-      return "<p><em>(no image)</em></p>";
-    }
-    const std::vector<unsigned char> bytes = read_file(file);
+  // The key of `rel`'s bytes in the table, adding them; empty when it is not a plain file
+  // inside cases/.
+  std::string key(const std::string& rel) {
+    if (!inside(dir_, rel)) return "";
+    const std::vector<unsigned char> bytes = read_file(dir_ / rel);
     const std::string key = fmt::format("{:016x}", XXH3_64bits(bytes.data(), bytes.size()));
     if (!data_.contains(key)) data_[key] = base64(bytes);
-    return fmt::format(R"(<img class="{}" data-key="{}" alt="{}">)", cls, key, escape_markup(alt));
+    return key;
   }
   std::string json() const {
     std::string out = "{";
@@ -71,23 +120,20 @@ std::string file_of(const CaseResult& c, const std::string& role) {
   return it == c.files.end() ? std::string() : it->second;
 }
 
-// escape_markup() line by line, keeping the line breaks (for <pre>).
-std::string escape_lines(std::string_view text) {
-  std::string out;
-  for (std::size_t at = 0; at <= text.size();) {
-    const std::size_t nl = std::min(text.find('\n', at), text.size());
-    out += escape_markup(text.substr(at, nl - at));
-    if (nl < text.size()) out += '\n';
-    at = nl + 1;
+// How close a case came to its limit: allowed minus measured mismatch (negative = over);
+// NaN when no image was measured.
+double margin_value(const CaseResult& c) {
+  double worst = c.tolerance.max_mismatch_percent;
+  bool any = false;
+  for (const ImageVerdict& v : c.images) {
+    if (v.status == Status::kPass || v.status == Status::kFail) {
+      worst = std::min(worst, c.tolerance.max_mismatch_percent - v.mismatch_percent);
+      any = true;
+    }
   }
-  return out;
+  return any ? worst : std::nan("");
 }
 
-std::string status_cell(Status s) {
-  return fmt::format(R"(<span class="{0}">{0}</span>)", status_name(s));
-}
-
-// How close a case came to its limit: allowed minus measured mismatch (negative = over).
 std::string margin(const CaseResult& c) {
   double worst = c.tolerance.max_mismatch_percent;
   bool any = false;
@@ -100,30 +146,11 @@ std::string margin(const CaseResult& c) {
   return any ? fmt::format("{:+.4f}", worst) : "";
 }
 
-std::string summary_table(const RunResults& run) {
-  std::string h =
-      "<table><tr><th>case</th><th>status</th><th>mismatch %</th><th>allowed %</th>"
-      "<th>margin</th><th>max Δ</th><th>time s</th><th>reused</th></tr>\n";
-  for (const CaseResult& c : run.cases) {
-    std::string mismatch, delta;
-    for (const ImageVerdict& v : c.images) {
-      mismatch += (mismatch.empty() ? "" : " / ") + escape_markup(v.image + " " + v.mismatch_text);
-      delta += (delta.empty() ? "" : " / ") + std::to_string(v.max_channel_delta);
-    }
-    h += fmt::format(
-        "<tr><td><a href=\"#{0}\">{0}</a></td><td>{1}</td><td>{2}</td><td class=num>{3}</td>"
-        "<td class=num>{4}</td><td class=num>{5}</td><td class=num>{6:.2f}</td><td>{7}</td></tr>\n",
-        escape_markup(c.id), status_cell(c.status), mismatch, c.tolerance.max_mismatch_percent,
-        margin(c), delta, c.seconds, c.reused ? "yes" : "");
-  }
-  return h + "</table>\n";
-}
-
 // The thesis's Tables 11-14: per technique, how much of the image AO changes.
 std::string ao_effect_table(const RunResults& run) {
   std::map<std::string, std::pair<std::vector<double>, std::vector<double>>> by;
   for (const CaseResult& c : run.cases) {
-    if (c.status == Status::kError) continue;
+    if (c.status == Status::kError || c.kind != "render") continue;
     by[c.technique].first.push_back(c.ao_effect_less);
     by[c.technique].second.push_back(c.ao_effect_nothing);
   }
@@ -142,85 +169,6 @@ std::string ao_effect_table(const RunResults& run) {
         escape_markup(t), v.first.size(), mean(v.first), mean(v.second));
   }
   return h + "</table>\n";
-}
-
-std::string kv_table(const std::map<std::string, std::string>& kv) {
-  std::string h = "<table>";
-  for (const auto& [k, v] : kv) {
-    h += fmt::format("<tr><th>{}</th><td>{}</td></tr>", escape_markup(k), escape_markup(v));
-  }
-  return h + "</table>";
-}
-
-std::string figure(const std::string& img, std::string_view caption) {
-  return fmt::format("<figure>{}<figcaption>{}</figcaption></figure>", img, caption);
-}
-
-std::string image_comparison(const CaseResult& c, const ImageVerdict& v, Pictures& pics) {
-  const std::string fresh = file_of(c, v.image), golden = file_of(c, "golden:" + v.image);
-  std::string h = fmt::format("<h4>{} — {} {}% (allowed {}%), max channel Δ {}{}</h4>\n",
-                              escape_markup(v.image), status_cell(v.status),
-                              escape_markup(v.mismatch_text), c.tolerance.max_mismatch_percent,
-                              v.max_channel_delta, v.identical ? ", byte-identical" : "");
-  if (!v.message.empty()) h += "<p>" + escape_markup(v.message) + "</p>\n";
-  h += "<div class=images>";
-  if (!golden.empty()) h += figure(pics.img(golden, "", "golden"), "golden");
-  h += figure(pics.img(fresh, "", "new"), "new");
-  if (const std::string diff = file_of(c, "diff:" + v.image); !diff.empty()) {
-    h += figure(pics.img(diff, "", "diff"), "diff");
-  }
-  if (!golden.empty() && !v.identical) {
-    h += figure("<div class=swap>" + pics.img(golden, "golden", "golden") +
-                    pics.img(fresh, "new", "new") + "</div>",
-                "golden; hover for new");
-    h += figure("<div class=slider>" + pics.img(golden, "", "golden") +
-                    pics.img(fresh, "top", "new") +
-                    "<input type=range min=0 max=100 value=50 aria-label=\"new vs golden\"></div>",
-                "slider: new (left) over golden");
-  }
-  return h + "</div>\n";
-}
-
-std::string case_section(const CaseResult& c, Pictures& pics) {
-  std::string h = fmt::format("<section class=case id=\"{0}\"><h2>{0} {1}</h2>\n",
-                              escape_markup(c.id), status_cell(c.status));
-  if (!c.message.empty()) h += "<p>" + escape_markup(c.message) + "</p>\n";
-  if (!c.bless_command.empty()) {
-    h += "<p>Accept this render as the golden: <code>" + escape_markup(c.bless_command) +
-         "</code></p>\n";
-  }
-  if (c.exit_status >= 0 || !c.source.empty()) {
-    h += fmt::format("<p>{} <code>{}</code>{}</p>\n", c.kind == "command" ? "Command" : "Source",
-                     escape_markup(c.source),
-                     c.exit_status >= 0 ? fmt::format(", exit status {}", c.exit_status) : "");
-  }
-  if (!c.command_stderr.empty()) {
-    h += "<details><summary>stderr</summary><pre>" + escape_lines(c.command_stderr) +
-         "</pre></details>\n";
-  }
-  for (const ImageVerdict& v : c.images) h += image_comparison(c, v, pics);
-  h += "<details><summary>no AO / with AO / AO only, parameters, timings</summary><div "
-       "class=images>";
-  h += figure(pics.img(file_of(c, "no_ao"), "", "no AO"), "no AO");
-  h += figure(pics.img(file_of(c, "with_ao"), "", "with AO"), "with AO");
-  h += figure(pics.img(file_of(c, "ao_only"), "", "AO only"), "AO only");
-  h += "</div>";
-  std::map<std::string, std::string> about;
-  for (const auto& [k, v] : c.params) about[k] = v.is_string() ? v.get<std::string>() : v.dump();
-  about["scene / view / technique"] = c.scene + " / " + c.view + " / " + c.technique;
-  about["size"] = fmt::format("{}x{}", c.width, c.height);
-  about["tolerance"] =
-      fmt::format("mode {}, ≤ {}% mismatch, channel Δ ≤ {}", resemble::mode_name(c.tolerance.mode),
-                  c.tolerance.max_mismatch_percent, c.tolerance.max_channel_delta);
-  about["AO effect (ignoreLess / ignoreNothing)"] =
-      fmt::format("{:.2f}% / {:.2f}%", c.ao_effect_less, c.ao_effect_nothing);
-  h += kv_table(about);
-  std::map<std::string, std::string> times;
-  for (const renderer::PassTime& t : c.times) {
-    times[t.pass] = fmt::format("GPU {:.3f} ms", t.gpu_ms);
-  }
-  h += kv_table(times) + "</details></section>\n";
-  return h;
 }
 
 // The latest `aosuite sweep` beside this report (its default output, reports/sweep, next to
@@ -248,28 +196,177 @@ std::string sweep_link(const fs::path& report_dir) {
 }  // namespace
 
 void write_html_report(const RunResults& run, const fs::path& report_dir,
-                       const ReportOptions& /*options*/) {
-  Pictures pics(report_dir / "cases");
+                       const ReportOptions& options) {
+  const fs::path cases_dir = report_dir / "cases";
+  Pictures pics(cases_dir);
+  // Each picture as the page loads it: a file beside index.html, or (single file) a key into
+  // the embedded table.
+  auto url = [&](const std::string& rel) -> std::string {
+    if (rel.empty()) return "";
+    if (options.single_file) {
+      const std::string key = pics.key(rel);
+      return key.empty() ? "" : "k:" + key;
+    }
+    return inside(cases_dir, rel) ? "cases/" + rel : "";
+  };
+
+  // Failures and NEW first, then flaky, then passes by margin: near misses before easy passes.
+  std::vector<std::size_t> order(run.cases.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  auto rank = [](Status s) {
+    switch (s) {
+      case Status::kError:
+        return 0;
+      case Status::kFail:
+        return 1;
+      case Status::kNew:
+        return 2;
+      case Status::kFlaky:
+        return 3;
+      case Status::kPass:
+        return 4;
+    }
+    return 4;
+  };
+  std::vector<double> margins(run.cases.size());
+  for (std::size_t i = 0; i < run.cases.size(); ++i) {
+    const double m = margin_value(run.cases[i]);
+    margins[i] = std::isnan(m) ? 1e300 : m;
+  }
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    const int ra = rank(run.cases[a].status), rb = rank(run.cases[b].status);
+    return ra != rb ? ra < rb : margins[a] < margins[b];
+  });
+
+  // The table's rows are drawn by the page from this, a screenful at a time: a report of
+  // thousands of cases parses and lays out no more rows than are looked at.
+  nlohmann::json data = nlohmann::json::array();
+  for (std::size_t n = 0; n < order.size(); ++n) {
+    const CaseResult& c = run.cases[order[n]];
+    std::string mismatch, delta;
+    nlohmann::json images = nlohmann::json::array();
+    for (const ImageVerdict& v : c.images) {
+      mismatch += (mismatch.empty() ? "" : " / ") + v.mismatch_text;
+      delta += (delta.empty() ? "" : " / ") + std::to_string(v.max_channel_delta);
+      images.push_back({{"image", v.image},
+                        {"status", status_name(v.status)},
+                        {"mismatch", v.mismatch_text},
+                        {"delta", v.max_channel_delta},
+                        {"identical", v.identical},
+                        {"message", printable(v.message)},
+                        {"new", url(file_of(c, v.image))},
+                        {"golden", url(file_of(c, "golden:" + v.image))},
+                        {"diff", url(file_of(c, "diff:" + v.image))}});
+    }
+    // The thumbnail: the first gated image (the golden where there is no new one).
+    std::string thumb;
+    if (!c.images.empty()) {
+      const std::string& first = c.images.front().image;
+      std::string rel = file_of(c, first);
+      if (rel.empty() || !inside(cases_dir, rel)) rel = file_of(c, "golden:" + first);
+      thumb = url(thumbnail(cases_dir, rel));
+    }
+    nlohmann::json about = nlohmann::json::object();
+    if (c.kind == "render") {
+      about["scene / view / technique"] = c.scene + " / " + c.view + " / " + c.technique;
+      about["AO effect (ignoreLess / ignoreNothing)"] =
+          fmt::format("{:.2f}% / {:.2f}%", c.ao_effect_less, c.ao_effect_nothing);
+    }
+    if (c.width > 0) about["size"] = fmt::format("{}x{}", c.width, c.height);
+    about["tolerance"] = fmt::format(
+        "mode {}, ≤ {}% mismatch, channel Δ ≤ {}", resemble::mode_name(c.tolerance.mode),
+        c.tolerance.max_mismatch_percent, c.tolerance.max_channel_delta);
+    nlohmann::json params = nlohmann::json::object();
+    for (const auto& [k, v] : c.params)
+      params[k] = v.is_string() ? printable(v.get<std::string>()) : v.dump();
+    nlohmann::json times = nlohmann::json::object();
+    for (const renderer::PassTime& t : c.times)
+      times[t.pass] = fmt::format("GPU {:.3f} ms", t.gpu_ms);
+    data.push_back({{"id", c.id},
+                    {"status", status_name(c.status)},
+                    {"kind", c.kind},
+                    {"source", printable(c.source)},
+                    {"message", printable(c.message)},
+                    {"bless", printable(c.bless_command)},
+                    {"exit", c.exit_status},
+                    {"stderr", printable_lines(c.command_stderr)},
+                    {"attempts", c.attempts},
+                    {"mismatch", mismatch},
+                    {"delta", delta},
+                    {"seconds", std::round(c.seconds * 100) / 100},
+                    {"thumb", thumb},
+                    {"allowed", c.tolerance.max_mismatch_percent},
+                    {"margin", margin(c)},
+                    {"about", about},
+                    {"params", params},
+                    {"times", times},
+                    {"images", images}});
+  }
+
   const Counts n = count(run);
+  std::string approve_failed = run.approve_prefix;
+  if (const std::size_t at = approve_failed.find(" --from-report "); at != std::string::npos) {
+    approve_failed.replace(at, 15, " --failed ");
+  }
+  const nlohmann::json meta = {{"approve", printable(run.approve_prefix)},
+                               {"approve_failed", printable(approve_failed)}};
+  // The AO tables and the sweep belong to suites that render scenes, not to image-only ones.
+  bool renders = run.cases.empty();
+  for (const CaseResult& c : run.cases) renders = renders || c.kind == "render";
+
   std::string body = fmt::format(
-      "<h1>aosuite: {}</h1>\n<p>{} cases: <span class=PASS>{} passed</span>, <span "
+      "<header><h1>aosuite: {}</h1>\n<p>{} cases: <span class=PASS>{} passed</span>, <span "
       "class=FAIL>{} failed</span>, <span class=NEW>{} new</span>, <span class=ERROR>{} "
-      "errors</span>. Suite <code>{}</code>{}. GL: {} (platform <code>{}</code>).</p>\n",
+      "errors</span>{}. Suite <code>{}</code>{}.{}</p>\n",
       escape_markup(run.suite), run.cases.size(), n.pass, n.fail, n.fresh, n.error,
+      n.flaky ? fmt::format(", <span class=FLAKY>{} flaky</span>", n.flaky) : "",
       escape_markup(run.suite_file), run.shard.empty() ? "" : ", shard " + escape_markup(run.shard),
-      escape_markup(run.gl), escape_markup(run.platform));
-  body += "<h2>Cases</h2>\n" + summary_table(run);
-  body += "<h2>How much AO changes the image (thesis Tables 11–14)</h2>\n" + ao_effect_table(run);
-  body += "<h2>Run time against error</h2>\n" + sweep_link(report_dir);
-  for (const CaseResult& c : run.cases) body += case_section(c, pics);
+      run.gl.empty() ? ""
+                     : " GL: " + escape_markup(run.gl) + " (platform <code>" +
+                           escape_markup(run.platform) + "</code>).");
+  body += R"(<nav id=bar><span id=filters>)";
+  for (const char* st : {"ERROR", "FAIL", "NEW", "FLAKY", "PASS"}) {
+    int count_of = 0;
+    for (const CaseResult& c : run.cases) count_of += status_name(c.status) == st;
+    body += fmt::format(
+        R"(<label class={0}><input type=checkbox data-status={0} checked> {0} ({1})</label> )", st,
+        count_of);
+  }
+  body +=
+      "</span><input id=search type=search placeholder=\"filter: id, path, message (/)\" "
+      "aria-label=filter> <span id=shown></span></nav>\n"
+      "<div id=approve><button id=select-failing>select shown FAIL/NEW</button> <button "
+      "id=select-none>clear</button> <span id=selected>0 selected</span>: <code "
+      "id=command></code> <button id=copy>copy</button> <span id=copied></span></div>\n"
+      "<p class=keys>Keys: j/k or ↓/↑ move, n/p next/previous failure, Enter open, Esc close, "
+      "x select, / filter; in a case: f fit, 1 one-to-one, +/− zoom.</p></header>\n";
+  body +=
+      "<main><table id=cases><thead><tr><th></th><th>status</th><th>case</th><th>mismatch "
+      "%</th><th>allowed %</th><th>margin</th><th>max Δ</th><th>time s</th><th>image</th>"
+      "</tr></thead><tbody></tbody></table>\n<p id=more></p><noscript>This report needs "
+      "JavaScript; results.json holds the same.</noscript>\n";
+  if (renders) {
+    body += "<h2>How much AO changes the image (thesis Tables 11–14)</h2>\n" + ao_effect_table(run);
+    body += "<h2>Run time against error</h2>\n" + sweep_link(report_dir);
+  }
+  body += "</main><aside id=detail hidden></aside>\n";
+  auto script_json = [](const nlohmann::json& j) {
+    std::string text = j.dump();
+    for (std::size_t at = 0; (at = text.find("</", at)) != std::string::npos; at += 3) {
+      text.replace(at, 2, "<\\/");
+    }
+    return text;
+  };
   const std::string page = fmt::format(
       "<!doctype html>\n<html lang=en><head><meta charset=utf-8><title>aosuite: {}</title>"
-      "<style>{}</style></head><body>\n{}<script type=\"application/json\" id=images>{}</script>"
+      "<style>{}</style></head><body>\n{}<script type=\"application/json\" id=meta>{}</script>"
+      "<script type=\"application/json\" id=data>{}</script>"
+      "<script type=\"application/json\" id=images>{}</script>"
       "<script>{}</script></body></html>\n",
-      escape_markup(run.suite), report_assets().at("report.css"), body, pics.json(),
-      report_assets().at("report.js"));
+      escape_markup(run.suite), report_assets().at("report.css"), body, script_json(meta),
+      script_json(data), options.single_file ? pics.json() : "{}", report_assets().at("report.js"));
   fs::create_directories(report_dir);
-  write_file_atomic(report_dir / "index.html",
+  write_report_file(report_dir / "index.html",
                     {reinterpret_cast<const unsigned char*>(page.data()), page.size()});
 }
 

@@ -1,5 +1,12 @@
 #include "harness/results.hpp"
 
+#include <fcntl.h>
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cerrno>
+#include <cstring>
 #include <fstream>
 #include <stdexcept>
 
@@ -156,9 +163,43 @@ RunResults read_results(const fs::path& dir) {
   }
 }
 
+void write_report_file(const fs::path& path, std::span<const unsigned char> bytes) {
+  static std::atomic<unsigned> serial{0};
+  const std::string tmp =
+      (path.parent_path() /
+       fmt::format(".{}.tmp-{}-{}", path.filename().string(), ::getpid(), serial++))
+          .string();
+  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+  if (fd < 0) {
+    throw std::runtime_error(path.string() + ": cannot write: " + std::strerror(errno));
+  }
+  const auto fail = [&](const char* what) {
+    const int saved = errno;
+    ::close(fd);
+    ::unlink(tmp.c_str());
+    throw std::runtime_error(path.string() + ": " + what + ": " + std::strerror(saved));
+  };
+  for (std::size_t done = 0; done < bytes.size();) {
+    const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) fail("cannot write");
+    done += static_cast<std::size_t>(n);
+  }
+  if (::close(fd) != 0) {
+    const int saved = errno;
+    ::unlink(tmp.c_str());
+    throw std::runtime_error(path.string() + ": cannot write: " + std::strerror(saved));
+  }
+  if (::rename(tmp.c_str(), path.c_str()) != 0) {
+    const int saved = errno;
+    ::unlink(tmp.c_str());
+    throw std::runtime_error(path.string() + ": cannot rename into place: " + std::strerror(saved));
+  }
+}
+
 void write_results(const fs::path& dir, const RunResults& r) {
   const std::string text = to_json(r).dump(1) + "\n";
-  write_file_atomic(dir / "results.json",
+  write_report_file(dir / "results.json",
                     {reinterpret_cast<const unsigned char*>(text.data()), text.size()});
 }
 

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -65,6 +66,10 @@ nlohmann::json to_json(const CaseResult& c);
 CaseResult case_from_json(const nlohmann::json& j);
 nlohmann::json to_json(const RunResults& r);
 RunResults run_from_json(const nlohmann::json& j);
+
+// Writes a report file under a temporary name and renames it into place: never seen half
+// written, but not synced (a report is rebuilt by the next run; goldens are synced).
+void write_report_file(const std::filesystem::path& path, std::span<const unsigned char> bytes);
 
 // Reads `dir`/results.json; throws naming the file if it is missing or malformed.
 RunResults read_results(const std::filesystem::path& dir);

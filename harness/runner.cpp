@@ -110,14 +110,48 @@ struct Gl {
   }
 };
 
-std::optional<CaseResult> previous(const fs::path& case_dir) {
-  std::ifstream in(case_dir / "case.json");
-  if (!in) return std::nullopt;
-  try {
-    return case_from_json(nlohmann::json::parse(in));
-  } catch (const std::exception&) {
-    return std::nullopt;  // a damaged cache entry only costs a re-render
+// Writes `bytes` into the report unless the file there already holds them: an unchanged image
+// costs no write (a rename over a file can wait for the disk).
+void keep_in_report(const fs::path& file, const std::vector<unsigned char>& bytes) {
+  std::error_code ec;
+  if (fs::is_regular_file(fs::symlink_status(file, ec)) &&
+      fs::file_size(file, ec) == bytes.size() && !ec && read_file(file) == bytes) {
+    return;
   }
+  write_report_file(file, bytes);
+}
+
+// The report folder's cache.json: the last result of every case run there (any selection), by
+// id: what tells an unchanged case. One file, read once and written once per run (thousands of
+// small files cost more than their bytes). A damaged cache only costs re-running.
+using Cache = std::map<std::string, CaseResult>;
+
+Cache load_cache(const fs::path& report_dir) {
+  Cache cache;
+  std::ifstream in(report_dir / "cache.json");
+  if (!in) return cache;
+  try {
+    for (const nlohmann::json& j : nlohmann::json::parse(in)) {
+      CaseResult c = case_from_json(j);
+      cache[c.id] = std::move(c);
+    }
+  } catch (const std::exception&) {
+    cache.clear();
+  }
+  return cache;
+}
+
+// What only describes one run (its time, whether it was reused) is left out.
+void save_cache(const fs::path& report_dir, Cache cache, const std::vector<CaseResult>& ran) {
+  for (const CaseResult& r : ran) {
+    CaseResult& saved = cache[r.id] = r;
+    saved.seconds = 0, saved.reused = false;
+  }
+  nlohmann::json all = nlohmann::json::array();
+  for (const auto& [id, c] : cache) all.push_back(to_json(c));
+  const std::string text = all.dump() + "\n";
+  write_report_file(report_dir / "cache.json",
+                    {reinterpret_cast<const unsigned char*>(text.data()), text.size()});
 }
 
 double raw_mismatch(const cv::Mat& a, const cv::Mat& b, resemble::Mode mode) {
@@ -143,7 +177,7 @@ void render_case(rd::Renderer& renderer, const Case& c, const fs::path& case_dir
   fs::create_directories(case_dir);
   for (const auto& [name, mat] : out.rgba) {
     out.png[name] = encode_png_rgba8(mat, 6);
-    write_file_atomic(case_dir / (name + ".png"), out.png[name]);
+    keep_in_report(case_dir / (name + ".png"), out.png[name]);
   }
   r.times = img.times;
   r.ao_effect_less = raw_mismatch(img.no_ao, img.with_ao, resemble::Mode::kLess);
@@ -208,7 +242,7 @@ void produce_images(const Case& c, const fs::path& case_dir, CaseResult& r, Rend
     }
     out.png[name] = read_file(from[i]);
     check_png(out.png[name], from[i].string());
-    write_file_atomic(case_dir / (name + ".png"), out.png[name]);
+    keep_in_report(case_dir / (name + ".png"), out.png[name]);
   }
 }
 
@@ -287,10 +321,12 @@ CaseResult skeleton(const Case& c) {
 // Renders, runs or reads (or reuses) one case into the report folder: the part check and bless
 // share. Returns the previous result when the images were reused.
 std::optional<CaseResult> prepare(Gl& gl, const std::string& gl_description, const Case& c,
-                                  const RunOptions& o, CaseResult& r, Rendered& images) {
+                                  const RunOptions& o, const Cache& cache, CaseResult& r,
+                                  Rendered& images) {
   const fs::path case_dir = o.report_dir / "cases" / c.id;
   r.input_hash = c.source ? image_input_hash(c) : input_hash(c, gl_description);
-  std::optional<CaseResult> prev = o.reuse ? previous(case_dir) : std::nullopt;
+  std::optional<CaseResult> prev;
+  if (const auto it = cache.find(c.id); o.reuse && it != cache.end()) prev = it->second;
   if (prev && prev->input_hash == r.input_hash && reuse_render(c, *prev, case_dir, r, images)) {
     return prev;
   }
@@ -340,7 +376,7 @@ void judge_case(const Suite& suite, const Case& c, const std::string& platform, 
     if (!v.identical && !v.golden.empty() && v.status != Status::kError) {
       // A copy written under a temporary name and renamed: never a truncated golden image in
       // the report, even on a full disk.
-      write_file_atomic(case_dir / ("golden_" + name + ".png"), read_file(v.golden));
+      keep_in_report(case_dir / ("golden_" + name + ".png"), read_file(v.golden));
       r.files["golden:" + name] = c.id + "/golden_" + name + ".png";
     } else if (v.identical) {
       r.files["golden:" + name] = c.id + "/" + name + ".png";
@@ -357,7 +393,7 @@ void judge_deleted(const Case& c, const RunOptions& o, CaseResult& r) {
   const fs::path case_dir = o.report_dir / "cases" / c.id;
   fs::create_directories(case_dir);
   r.files.clear();
-  write_file_atomic(case_dir / "golden_image.png", read_file(c.source->golden_file));
+  keep_in_report(case_dir / "golden_image.png", read_file(c.source->golden_file));
   r.files["golden:image"] = c.id + "/golden_image.png";
   r.status = Status::kFail;
   r.message = "deleted: only in the expected folder";
@@ -365,12 +401,6 @@ void judge_deleted(const Case& c, const RunOptions& o, CaseResult& r) {
   v.image = "image", v.status = Status::kFail, v.golden = c.source->golden_file;
   v.mismatch_percent = 100, v.mismatch_text = "100.00", v.message = r.message;
   r.images.push_back(std::move(v));
-}
-
-void save_case(const fs::path& report_dir, const CaseResult& r) {
-  const std::string text = to_json(r).dump(1) + "\n";
-  write_file_atomic(report_dir / "cases" / r.id / "case.json",
-                    {reinterpret_cast<const unsigned char*>(text.data()), text.size()});
 }
 
 // Runs `work(gl, case, result)` over the cases on `jobs` threads, each with its own GL
@@ -457,14 +487,15 @@ RunResults start(const Suite& suite, const RunOptions& o, const std::vector<cons
 
 // One attempt at a case: images, then the verdict.
 void check_once(const Suite& suite, const std::string& gl, const std::string& platform,
-                const RunOptions& o, Gl& renderer, const Case& c, CaseResult& r) {
+                const RunOptions& o, const Cache& cache, Gl& renderer, const Case& c,
+                CaseResult& r) {
   if (c.source && c.source->deleted) {
     r.input_hash = r.judge_hash = "";
     judge_deleted(c, o, r);
     return;
   }
   Rendered images;
-  const auto prev = prepare(renderer, gl, c, o, r, images);
+  const auto prev = prepare(renderer, gl, c, o, cache, r, images);
   judge_case(suite, c, platform, o, prev, r, images);
 }
 
@@ -475,13 +506,14 @@ RunResults check(const Suite& suite, const RunOptions& o) {
   std::unique_ptr<rd::Renderer> first;
   RunResults run = start(suite, o, cases, true, first);
   const std::string gl = run.gl, platform = run.platform;
+  const Cache cache = load_cache(o.report_dir);
   RunOptions again = o;
   again.reuse = false;
   run.cases =
       for_each_case(cases, o, std::move(first), [&](Gl& renderer, const Case& c, CaseResult& r) {
         auto attempt = [&](const RunOptions& opts, CaseResult& into) {
           try {
-            check_once(suite, gl, platform, opts, renderer, c, into);
+            check_once(suite, gl, platform, opts, cache, renderer, c, into);
           } catch (const std::exception& e) {
             into.status = Status::kError;
             into.message = e.what();
@@ -503,9 +535,9 @@ RunResults check(const Suite& suite, const RunOptions& o) {
         if (r.status == Status::kFail || r.status == Status::kNew) {
           r.bless_command = bless_command(bless_prefix(suite), {c.id});
         }
-        save_case(o.report_dir, r);
       });
   write_results(o.report_dir, run);
+  save_cache(o.report_dir, cache, run.cases);
   return run;
 }
 
@@ -592,6 +624,7 @@ RunResults bless(const Suite& suite, const BlessOptions& b) {
   }
   const std::string gl = run.gl, platform = b.platform ? run.platform : std::string();
   const std::string judge_platform = run.platform;
+  const Cache cache = from_report ? Cache() : load_cache(b.run.report_dir);
   run.cases = for_each_case(
       cases, b.run, std::move(first), [&](Gl& renderer, const Case& c, CaseResult& r) {
         const bool deleted = c.source && c.source->deleted;
@@ -627,7 +660,7 @@ RunResults bless(const Suite& suite, const BlessOptions& b) {
         } else if (!deleted) {
           std::optional<CaseResult> prev;
           try {
-            prev = prepare(renderer, gl, c, b.run, r, images);
+            prev = prepare(renderer, gl, c, b.run, cache, r, images);
           } catch (const std::exception& e) {
             throw std::runtime_error(std::string("could not be rendered: ") + e.what() +
                                      "; its goldens are untouched");

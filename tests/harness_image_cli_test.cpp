@@ -7,6 +7,7 @@
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <set>
 
 #include "compare/opencv.hpp"
 #include "png_fixture.hpp"
@@ -377,6 +378,98 @@ outputs = ["w.png"]
   EXPECT_EQ(r.rc, 1) << r.out;
   EXPECT_NE(r.out.find("FAIL  chart"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("(3 attempts)"), std::string::npos) << r.out;
+}
+
+// The report at scale: images as files beside index.html (thumbnails for big ones), failures
+// first and passes by margin, and the command for the cases selected in the page blesses
+// exactly them from the report's images.
+TEST_F(ImageCases, TheReportOrdersLinksAndApprovesWhatIsSelected) {
+  fs::create_directories(dir_ / "s" / "shots");
+  cv::Mat big(300, 400, CV_8UC4, cv::Scalar(200, 100, 50, 255));
+  write_png_rgba8(dir_ / "s" / "shots" / "big.png", big);
+  std::string suite = R"(
+[defaults.tolerance]
+max_mismatch_percent = 60
+[[case]]
+name = "big"
+files = ["shots/big.png"]
+)";
+  // a: fails; b: passes with 50 % changed (a near miss); c: passes identical; d: fails.
+  for (const char* name : {"a", "b", "c", "d"}) {
+    fs::copy_file(dir_ / "s" / "red.png", dir_ / "s" / "shots" / (std::string(name) + ".png"));
+    suite +=
+        std::string("[[case]]\nname = \"") + name + "\"\nfiles = [\"shots/" + name + ".png\"]\n";
+  }
+  std::ofstream(dir_ / "s" / "r.toml") << suite;
+  ASSERT_EQ(aosuite("bless s/r.toml").rc, 0);
+  for (const char* name : {"a", "d"}) {
+    write_png_rgba8(dir_ / "s" / "shots" / (std::string(name) + ".png"),
+                    flat(8, 6, {0, 0, 255, 255}));
+  }
+  fs::copy_file(dir_ / "s" / "green.png", dir_ / "s" / "shots" / "b.png",
+                fs::copy_options::overwrite_existing);
+  test::Outcome r = aosuite("check s/r.toml");
+  ASSERT_EQ(r.rc, 1) << r.out << r.err;
+  const fs::path report = dir_ / "reports" / "r";
+  const std::string html = read_text(report / "index.html");
+  EXPECT_EQ(html.find("iVBOR"), std::string::npos);  // images are files, not embedded PNGs
+  EXPECT_EQ(html.find("http"), std::string::npos);   // nothing from the network
+  // Failures first, then passes by margin: b (10 % left) before c and big (60 % left).
+  const std::string tag = "<script type=\"application/json\" id=data>";
+  const std::size_t d0 = html.find(tag) + tag.size();
+  const auto data = nlohmann::json::parse(html.substr(d0, html.find("</script>", d0) - d0));
+  std::vector<std::string> order;
+  for (const nlohmann::json& c : data) order.push_back(c["id"]);
+  ASSERT_EQ(order.size(), 5u);
+  EXPECT_EQ(std::set<std::string>(order.begin(), order.begin() + 2),
+            (std::set<std::string>{"a", "d"}));
+  EXPECT_EQ(order[2], "b") << html;
+  // The big image gets a thumbnail; small ones are their own.
+  const cv::Mat thumb = read_png_rgba8(report / "cases" / "big" / "thumb_big.png");
+  EXPECT_LE(thumb.cols, 160);
+  EXPECT_LE(thumb.rows, 120);
+  for (const nlohmann::json& c : data) {
+    EXPECT_EQ(c["thumb"],
+              "cases/" + c["id"].get<std::string>() + "/" +
+                  (c["id"] == "big" ? "thumb_big.png" : c["id"].get<std::string>() + ".png"));
+  }
+
+  // In the browser: the page is ready, the first failure is open, every image resolves to a
+  // file beside it; selecting a and b (#select=) gives one command for exactly them; n moves
+  // to the next failure.
+  r = test::run_shell("chromium --headless --no-sandbox --disable-gpu --dump-dom 'file://" +
+                          (report / "index.html").string() + "#select=a,b'",
+                      dir_.path());
+  ASSERT_EQ(r.rc, 0) << r.err;
+  EXPECT_NE(r.out.find("data-ready-ms=\""), std::string::npos);
+  EXPECT_NE(r.out.find("<h2 id=\"a\">a <span class=\"FAIL\">FAIL</span>"), std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("class=\"slider\""), std::string::npos);
+  EXPECT_NE(r.out.find("src=\"cases/a/golden_a.png\""), std::string::npos);
+  const std::string begin = "<code id=\"command\">";
+  const std::size_t c0 = r.out.find(begin);
+  ASSERT_NE(c0, std::string::npos) << r.out;
+  const std::string command =
+      r.out.substr(c0 + begin.size(), r.out.find("</code>", c0) - c0 - begin.size());
+  EXPECT_EQ(command,
+            "aosuite bless s/r.toml --from-report --report reports/r --force --filter '^(a|b)$'");
+  const test::Outcome keys =
+      test::run_shell("chromium --headless --no-sandbox --disable-gpu --dump-dom 'file://" +
+                          (report / "index.html").string() + "#keys=n'",
+                      dir_.path());
+  EXPECT_NE(keys.out.find("<h2 id=\"d\">d <span class=\"FAIL\">FAIL</span>"), std::string::npos)
+      << keys.out;
+
+  // The copied command approves a and b from the report's images; d stays failing.
+  const auto c_before = read_file(dir_ / "goldens" / "r" / "c" / "c.png");
+  r = aosuite(command.substr(std::string("aosuite ").size()));
+  EXPECT_EQ(r.rc, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("2 of 2 cases blessed"), std::string::npos) << r.out;
+  EXPECT_EQ(read_file(dir_ / "goldens" / "r" / "c" / "c.png"), c_before);
+  r = aosuite("check s/r.toml");
+  EXPECT_EQ(r.rc, 1) << r.out;
+  EXPECT_NE(r.out.find("4 passed, 1 failed"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("FAIL  d"), std::string::npos) << r.out;
 }
 
 }  // namespace

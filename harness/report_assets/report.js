@@ -1,15 +1,238 @@
-// Fills every <img data-key> from the page's image table (each picture is stored once, however
-// many cases show it) and drives the golden/new sliders. No network, no external scripts.
+// The report's behaviour: filter by status and text, keyboard navigation, one case opened
+// beside the table (golden / new / diff, swap, slider, zoom, 1:1), and the bless command for
+// the cases selected. Works from disk: no network, no external scripts, no server.
 (function () {
-  const images = JSON.parse(document.getElementById("images").textContent);
-  for (const img of document.querySelectorAll("img[data-key]")) {
-    img.src = "data:image/png;base64," + images[img.dataset.key];
+  "use strict";
+  const $ = (id) => document.getElementById(id);
+  const meta = JSON.parse($("meta").textContent);
+  const data = JSON.parse($("data").textContent);
+  const pics = JSON.parse($("images").textContent);
+  const url = (u) => (u && u.startsWith("k:") ? "data:image/png;base64," + pics[u.slice(2)] : u);
+  const esc = (s) =>
+    String(s).replace(/[&<>"']/g, (c) => ({ "&": "&amp;", "<": "&lt;", ">": "&gt;", '"': "&quot;", "'": "&#39;" })[c]);
+  const tbody = document.querySelector("#cases tbody");
+  const more = $("more");
+
+  // --- rows: drawn a chunk at a time for the cases that pass the filter ----------------------
+  const failing = (s) => s === "FAIL" || s === "NEW" || s === "ERROR";
+  const text = data.map((c) => (c.id + " " + c.source + " " + c.message).toLowerCase());
+  const selected = new Set(); // indices into data
+  const rowOf = new Map(); // index into data -> its <tr>, once drawn
+  let view = []; // indices into data that pass the filter, in the report's order
+  let drawn = 0; // how many of `view` are in the table
+  const CHUNK = 150;
+  function rowHtml(i) {
+    const c = data[i];
+    const thumb = c.thumb ? `<img class=thumb loading=lazy src="${esc(url(c.thumb))}" alt="">` : "";
+    return `<tr data-i=${i} data-s=${c.status}><td><input type=checkbox aria-label=select${c.status === "ERROR" ? " disabled" : ""}${selected.has(i) ? " checked" : ""}></td>` +
+      `<td><span class=${c.status}>${c.status}</span></td><td class=id><a href="#case=${esc(encodeURIComponent(c.id))}">${esc(c.id)}</a>` +
+      (c.source ? `<div class=src>${esc(c.source)}</div>` : "") +
+      (c.status !== "PASS" && c.message ? `<div class=msg>${esc(c.message)}</div>` : "") +
+      `</td><td class=num>${esc(c.mismatch)}</td><td class=num>${c.allowed}</td><td class=num>${esc(c.margin)}</td>` +
+      `<td class=num>${esc(c.delta)}</td><td class=num>${c.seconds.toFixed(2)}</td><td>${thumb}</td></tr>`;
   }
-  for (const slider of document.querySelectorAll(".slider")) {
-    const top = slider.querySelector("img.top");
-    const input = slider.querySelector("input");
-    input.addEventListener("input", () => {
-      top.style.clipPath = "inset(0 " + (100 - input.value) + "% 0 0)";
+  function drawTo(count) {
+    count = Math.min(count, view.length);
+    if (count > drawn) {
+      tbody.insertAdjacentHTML("beforeend", view.slice(drawn, count).map(rowHtml).join(""));
+      const added = Array.from(tbody.rows).slice(drawn);
+      for (const tr of added) rowOf.set(+tr.dataset.i, tr);
+      drawn = count;
+    }
+    more.textContent = drawn < view.length ? `${view.length - drawn} more below (scroll, or press End)` : "";
+  }
+  function applyFilter() {
+    const on = new Set();
+    for (const box of document.querySelectorAll("#filters input")) if (box.checked) on.add(box.dataset.status);
+    const words = $("search").value.toLowerCase().split(/\s+/).filter((w) => w);
+    view = [];
+    data.forEach((c, i) => {
+      if (on.has(c.status) && words.every((w) => text[i].includes(w))) view.push(i);
     });
+    tbody.textContent = "";
+    rowOf.clear();
+    drawn = 0;
+    drawTo(CHUNK);
+    if (current >= 0 && rowOf.has(current)) rowOf.get(current).classList.add("cur");
+    $("shown").textContent = view.length + " of " + data.length + " shown";
   }
+  for (const box of document.querySelectorAll("#filters input")) box.addEventListener("change", applyFilter);
+  $("search").addEventListener("input", applyFilter);
+  new IntersectionObserver((seen) => {
+    if (seen.some((e) => e.isIntersecting)) drawTo(drawn + CHUNK);
+  }).observe(more);
+  tbody.addEventListener("click", (e) => {
+    const tr = e.target.closest("tr");
+    if (!tr) return;
+    const i = +tr.dataset.i;
+    if (e.target.tagName === "INPUT") {
+      select(i, e.target.checked);
+      updateCommand();
+      return;
+    }
+    if (e.target.tagName === "A") e.preventDefault();
+    open(i);
+  });
+
+  // --- selection and the bless command -----------------------------------------------------
+  // As the harness writes them: the regular expression matching exactly these ids, and one
+  // shell word (bare when safe, else single-quoted).
+  const exact = (ids) => {
+    const alt = ids.map((id) => id.replace(/[\\^$.|?*+()[\]{}]/g, "\\$&")).join("|");
+    return ids.length === 1 ? "^" + alt + "$" : "^(" + alt + ")$";
+  };
+  const shq = (s) => (/^[A-Za-z0-9_\-./=:,+@%]+$/.test(s) ? s : "'" + s.replace(/'/g, "'\\''") + "'");
+  function updateCommand() {
+    const chosen = Array.from(selected).sort((a, b) => a - b);
+    const ids = chosen.map((i) => data[i].id);
+    const passing = chosen.some((i) => !failing(data[i].status));
+    $("selected").textContent = ids.length ? ids.length + " selected" : "none selected (all FAIL and NEW)";
+    $("command").textContent = ids.length
+      ? meta.approve + (passing ? " --force" : "") + " --filter " + shq(exact(ids))
+      : meta.approve_failed;
+  }
+  function select(i, on) {
+    if (data[i].status === "ERROR") return;
+    on ? selected.add(i) : selected.delete(i);
+    const tr = rowOf.get(i);
+    if (tr) tr.querySelector("input").checked = on;
+  }
+  $("select-failing").addEventListener("click", () => {
+    for (const i of view) if (data[i].status === "FAIL" || data[i].status === "NEW") select(i, true);
+    updateCommand();
+  });
+  $("select-none").addEventListener("click", () => {
+    for (const i of Array.from(selected)) select(i, false);
+    updateCommand();
+  });
+  $("copy").addEventListener("click", () => {
+    const command = $("command").textContent;
+    const fallback = () => {
+      const range = document.createRange();
+      range.selectNodeContents($("command"));
+      const s = getSelection();
+      s.removeAllRanges();
+      s.addRange(range);
+      $("copied").textContent = document.execCommand("copy") ? "copied" : "selected: press Ctrl+C";
+    };
+    if (navigator.clipboard && window.isSecureContext) {
+      navigator.clipboard.writeText(command).then(() => ($("copied").textContent = "copied"), fallback);
+    } else fallback();
+  });
+
+  // --- one case beside the table -----------------------------------------------------------
+  let current = -1, zoom = 0; // zoom 0: fit; else a factor of the natural size
+  const detail = $("detail");
+  const fig = (src, cls, caption) =>
+    src ? `<figure><img class="${cls}" src="${esc(url(src))}" alt="${esc(caption)}"><figcaption>${esc(caption)}</figcaption></figure>` : "";
+  function imageHtml(c, v) {
+    let h = `<h3>${esc(v.image)} — <span class="${v.status}">${v.status}</span> ${esc(v.mismatch || "-")}% (allowed ${c.allowed}%), max channel Δ ${v.delta}${v.identical ? ", byte-identical" : ""}</h3>`;
+    if (v.message) h += `<p>${esc(v.message)}</p>`;
+    h += `<div class=images>${fig(v.golden, "", "golden")}${fig(v.new, "", "new")}${fig(v.diff, "", "diff")}`;
+    if (v.golden && v.new && !v.identical) {
+      h += `<figure><div class=swap><img class=golden src="${esc(url(v.golden))}" alt=golden><img class=new src="${esc(url(v.new))}" alt=new></div><figcaption>golden; hover for new</figcaption></figure>`;
+      h += `<figure><div class=slider><img src="${esc(url(v.golden))}" alt=golden><img class=top src="${esc(url(v.new))}" alt=new><input type=range min=0 max=100 value=50 aria-label="new vs golden"></div><figcaption>slider: new (left) over golden</figcaption></figure>`;
+    }
+    return h + "</div>";
+  }
+  const table = (o) =>
+    "<table>" + Object.keys(o).map((k) => `<tr><th>${esc(k)}</th><td>${esc(o[k])}</td></tr>`).join("") + "</table>";
+  function open(i) {
+    if (i < 0 || i >= data.length) return;
+    if (rowOf.has(current)) rowOf.get(current).classList.remove("cur");
+    current = i;
+    const at = view.indexOf(i);
+    if (at >= drawn) drawTo(at + CHUNK);
+    const tr = rowOf.get(i);
+    if (tr) {
+      tr.classList.add("cur");
+      tr.scrollIntoView({ block: "nearest" });
+    }
+    const c = data[i];
+    let h = `<button class=close title="close (Esc)">×</button><h2 id="${esc(c.id)}">${esc(c.id)} <span class="${c.status}">${c.status}</span></h2>`;
+    if (c.message) h += `<p>${esc(c.message)}</p>`;
+    if (c.source) h += `<p>${c.kind === "command" ? "Command" : "Source"} <code>${esc(c.source)}</code>${c.exit >= 0 ? ", exit status " + c.exit : ""}${c.attempts > 1 ? ", " + c.attempts + " attempts" : ""}</p>`;
+    if (c.stderr) h += `<details${c.status === "ERROR" ? " open" : ""}><summary>stderr</summary><pre>${esc(c.stderr)}</pre></details>`;
+    if (c.bless) h += `<p>Accept a new render as the golden: <code>${esc(c.bless)}</code><br>Accept this report's image: <code>${esc(meta.approve + " --filter " + shq(exact([c.id])))}</code></p>`;
+    h += `<p class=zoom>Zoom: <button data-z=0>fit (f)</button> <button data-z=1>1:1 (1)</button> <button data-z=2>2×</button> <button data-z=4>4×</button> <button data-z=8>8×</button></p>`;
+    for (const v of c.images) h += imageHtml(c, v);
+    h += `<details><summary>parameters, timings</summary>${table(c.about)}${table(c.params)}${table(c.times)}</details>`;
+    detail.innerHTML = h;
+    detail.hidden = false;
+    detail.querySelector(".close").addEventListener("click", close);
+    for (const b of detail.querySelectorAll(".zoom button")) b.addEventListener("click", () => setZoom(+b.dataset.z));
+    for (const slider of detail.querySelectorAll(".slider")) {
+      const top = slider.querySelector("img.top"), input = slider.querySelector("input");
+      input.addEventListener("input", () => (top.style.clipPath = "inset(0 " + (100 - input.value) + "% 0 0)"));
+    }
+    setZoom(zoom);
+    history.replaceState(null, "", "#case=" + encodeURIComponent(c.id));
+  }
+  function close() {
+    detail.hidden = true;
+    history.replaceState(null, "", "#");
+  }
+  function setZoom(z) {
+    zoom = z;
+    detail.classList.toggle("fit", z === 0);
+    for (const b of detail.querySelectorAll(".zoom button")) b.classList.toggle("on", +b.dataset.z === z);
+    for (const img of detail.querySelectorAll(".images img")) {
+      const apply = () => (img.style.width = z ? img.naturalWidth * z + "px" : "");
+      img.complete ? apply() : img.addEventListener("load", apply, { once: true });
+    }
+  }
+  // The next case of the filtered list after (dir 1) or before (dir -1) `from` that `want`s.
+  function step(from, dir, want) {
+    let at = view.indexOf(from);
+    if (at < 0) at = dir > 0 ? -1 : view.length;
+    for (let k = at + dir; k >= 0 && k < view.length; k += dir) {
+      if (want(data[view[k]])) return view[k];
+    }
+    return -1;
+  }
+  function onKey(e) {
+    if (e.target.tagName === "INPUT" && e.target.type !== "checkbox") {
+      if (e.key === "Escape") e.target.blur();
+      return;
+    }
+    if (e.ctrlKey || e.metaKey || e.altKey) return;
+    const any = () => true, bad = (c) => failing(c.status);
+    let to = -2;
+    switch (e.key) {
+      case "j": case "ArrowDown": to = step(current, 1, any); break;
+      case "k": case "ArrowUp": to = step(current, -1, any); break;
+      case "n": to = step(current, 1, bad); break;
+      case "p": case "N": to = step(current, -1, bad); break;
+      case "Enter": case "o": to = current >= 0 ? current : step(-1, 1, any); break;
+      case "Home": to = step(-1, 1, any); break;
+      case "End": to = step(-1, -1, any); break;
+      case "Escape": close(); break;
+      case "x": case " ": if (current >= 0) { select(current, !selected.has(current)); updateCommand(); } break;
+      case "/": $("search").focus(); break;
+      case "f": setZoom(0); break;
+      case "1": setZoom(1); break;
+      case "+": case "=": setZoom(Math.min(16, (zoom || 1) * 2)); break;
+      case "-": setZoom(zoom > 1 ? zoom / 2 : 0); break;
+      default: return;
+    }
+    e.preventDefault();
+    if (to >= 0) open(to);
+  }
+  document.addEventListener("keydown", onKey);
+
+  // --- start: #select=id,id preselects; #case=id opens one, else the first failure; #keys=...
+  // then presses those keys (a link to "the third failure" is #keys=nnn) -------------------
+  const hash = decodeURIComponent(location.hash.slice(1));
+  const index = new Map(data.map((c, i) => [c.id, i]));
+  if (hash.startsWith("select=")) {
+    for (const id of hash.slice(7).split(",")) if (index.has(id)) select(index.get(id), true);
+  }
+  applyFilter();
+  updateCommand();
+  if (hash.startsWith("case=") && index.has(hash.slice(5))) open(index.get(hash.slice(5)));
+  else if (data.length && failing(data[0].status)) open(0);
+  if (hash.startsWith("keys=")) {
+    for (const key of hash.slice(5)) onKey({ key, target: document.body, preventDefault() {} });
+  }
+  document.documentElement.dataset.readyMs = performance.now().toFixed(0);
 })();
