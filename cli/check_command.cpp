@@ -60,7 +60,10 @@ hs::Suite load(const HarnessArgs& a) {
                                         : "give a suite file, or --actual DIR --expected DIR");
   }
   if (folders) {
-    if (!a.goldens.empty()) throw std::invalid_argument("folder mode takes no --goldens");
+    if (!a.goldens.empty() || a.platform || !a.tag.empty()) {
+      throw std::invalid_argument(
+          "folder mode takes no --goldens, --platform or --variant: --expected holds the goldens");
+    }
     hs::Tolerance t;
     t.max_mismatch_percent = a.max_mismatch;
     return hs::folder_suite(a.actual, a.expected, t);

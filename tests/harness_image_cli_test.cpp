@@ -287,7 +287,8 @@ TEST_F(ImageCases, FolderModeReportsChangedNewAndDeletedAndBlessAcceptsThem) {
   // Nothing to compare is not green; half a folder pair is a one-line error.
   for (const char* bad : {"check --actual empty1 --expected empty2", "check --actual actual",
                           "check s/t.toml --actual actual --expected expected",
-                          "check --actual nowhere --expected expected"}) {
+                          "check --actual nowhere --expected expected",
+                          "bless --actual actual --expected expected --variant x"}) {
     r = aosuite(bad);
     EXPECT_EQ(r.rc, 2) << bad << "\n" << r.out << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << bad << "\n" << r.err;
