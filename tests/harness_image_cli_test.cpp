@@ -142,6 +142,20 @@ TEST_F(ImageCases, CommandFailuresAreErrorsWithExitStatusAndStderr) {
             std::string::npos);
   EXPECT_EQ(aosuite("bless s/t.toml").rc, 2);
   EXPECT_FALSE(fs::exists(dir_ / "goldens" / "t" / "chart" / "chart.png"));
+  // The report's ERROR is not something to approve; a missing report or another suite's is a
+  // one-line error naming the file.
+  r = aosuite("bless s/t.toml --from-report --filter chart");
+  EXPECT_EQ(r.rc, 2) << r.out << r.err;
+  EXPECT_NE(r.out.find("NOT BLESSED chart: could not be judged in the report"), std::string::npos)
+      << r.out;
+  EXPECT_FALSE(fs::exists(dir_ / "goldens" / "t" / "chart" / "chart.png"));
+  for (const char* bad : {"bless s/t.toml --failed --report nowhere",
+                          "bless --actual s --expected s --failed --report reports/t"}) {
+    r = aosuite(bad);
+    EXPECT_EQ(r.rc, 2) << bad << "\n" << r.out << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_NE(r.err.find("results.json"), std::string::npos) << r.err;
+  }
 
   std::ofstream(dir_ / "s" / "t.toml", std::ios::app) << R"(
 [[case]]
