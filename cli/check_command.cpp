@@ -168,6 +168,11 @@ int finish(const hs::RunResults& run, const fs::path& report_dir, const std::str
     fmt::print("  to accept all {} failing and new cases: {}\n", to_accept.size(),
                hs::printable(accept_all));
   }
+  if (!to_accept.empty() && !run.bless_prefix.empty()) {
+    fmt::print("  or review {} and accept the images it shows: {} --failed --report {}\n",
+               hs::printable(report), hs::printable(run.bless_prefix),
+               hs::printable(hs::shell_quote(report_dir.string())));
+  }
   std::fflush(stdout);
   return hs::exit_code(n);
 }

@@ -592,8 +592,10 @@ RunResults bless(const Suite& suite, const BlessOptions& b) {
   const bool from_report = b.from_report || b.failed;
   std::vector<const Case*> cases;
   std::map<std::string, CaseResult> reported;
+  std::string report_platform;  // the platform the report's images were made on
   if (from_report) {
     const RunResults last = read_results(b.run.report_dir);
+    report_platform = last.platform;
     if (last.suite != suite.name) {
       throw std::invalid_argument(printable(
           fmt::format("{}: a report of suite '{}', not '{}'",
@@ -618,6 +620,7 @@ RunResults bless(const Suite& suite, const BlessOptions& b) {
   if (cases.empty()) cases = select_some(suite, b.run.selection);
   std::unique_ptr<rd::Renderer> first;
   RunResults run = start(suite, b.run, cases, !from_report, first);
+  if (from_report && run.platform.empty()) run.platform = report_platform;
   if (b.platform && run.platform.empty()) {
     throw std::invalid_argument(
         "--platform: no platform key (these cases render no scene): set AOSUITE_PLATFORM");

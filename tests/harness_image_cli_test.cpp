@@ -57,9 +57,9 @@ inputs = ["draw.sh", "colour.txt"]
 timeout = 20
 )";
   }
-  test::Outcome aosuite(const std::string& args) {
-    return test::run_shell("cd " + dir_.path().string() + " && " + AOSUITE_BIN + " " + args,
-                           dir_.path());
+  test::Outcome aosuite(const std::string& args, const std::string& env = "") {
+    return test::run_shell(
+        "cd " + dir_.path().string() + " && " + env + " " + AOSUITE_BIN + " " + args, dir_.path());
   }
   std::vector<unsigned char> golden() const {
     return read_file(dir_ / "goldens" / "t" / "chart" / "chart.png");
@@ -74,6 +74,10 @@ TEST_F(ImageCases, ACommandsImagesPassFailAndAreApprovedFromTheReport) {
   EXPECT_EQ(r.rc, 1) << r.out << r.err;
   EXPECT_NE(r.out.find("NEW   chart"), std::string::npos) << r.out;
   EXPECT_FALSE(fs::exists(dir_ / "goldens"));
+  EXPECT_NE(r.out.find("or review reports/t/index.html and accept the images it shows: aosuite "
+                       "bless s/t.toml --failed --report reports/t"),
+            std::string::npos)
+      << r.out;
   r = aosuite("bless s/t.toml --failed");
   EXPECT_EQ(r.rc, 0) << r.out << r.err;
   EXPECT_NE(r.out.find("BLESSED chart"), std::string::npos) << r.out;
@@ -123,6 +127,18 @@ TEST_F(ImageCases, ACommandsImagesPassFailAndAreApprovedFromTheReport) {
   r = aosuite("bless s/t.toml --failed");  // ...now nothing is left to accept
   EXPECT_EQ(r.rc, 0) << r.out << r.err;
   EXPECT_NE(r.out.find("nothing to accept"), std::string::npos) << r.out;
+
+  // Platform goldens for images no GL made: keyed by AOSUITE_PLATFORM, also from a report.
+  std::ofstream(dir_ / "s" / "colour.txt", std::ios::trunc) << "red";
+  EXPECT_EQ(aosuite("check s/t.toml", "AOSUITE_PLATFORM=ci-box").rc, 1);
+  r = aosuite("bless s/t.toml --failed --platform", "AOSUITE_PLATFORM=ci-box");
+  EXPECT_EQ(r.rc, 0) << r.out << r.err;
+  EXPECT_TRUE(fs::exists(dir_ / "goldens" / "t" / "chart" / "ci-box" / "chart.png"));
+  EXPECT_EQ(aosuite("check s/t.toml", "AOSUITE_PLATFORM=ci-box").rc, 0);
+  EXPECT_EQ(aosuite("check s/t.toml").rc, 1);  // elsewhere the generic (green) golden holds
+  r = aosuite("bless s/t.toml --failed --platform");
+  EXPECT_EQ(r.rc, 2) << r.out << r.err;  // no platform known: say so, write nothing
+  EXPECT_NE(r.err.find("AOSUITE_PLATFORM"), std::string::npos) << r.err;
 }
 
 // A command that fails, hangs or writes nothing is an ERROR (exit 2) with its exit status and
