@@ -153,7 +153,7 @@
     if (c.message) h += `<p>${esc(c.message)}</p>`;
     if (c.source) h += `<p>${c.kind === "command" ? "Command" : "Source"} <code>${esc(c.source)}</code>${c.exit >= 0 ? ", exit status " + c.exit : ""}${c.attempts > 1 ? ", " + c.attempts + " attempts" : ""}</p>`;
     if (c.stderr) h += `<details${c.status === "ERROR" ? " open" : ""}><summary>stderr</summary><pre>${esc(c.stderr)}</pre></details>`;
-    if (c.bless) h += `<p>Accept a new render as the golden: <code>${esc(c.bless)}</code><br>Accept this report's image: <code>${esc(meta.approve + " --filter " + shq(exact([c.id])))}</code></p>`;
+    if (c.bless) h += `<p>Accept after making the images again: <code>${esc(c.bless)}</code><br>Accept this report's image: <code>${esc(meta.approve + " --filter " + shq(exact([c.id])))}</code></p>`;
     h += `<p class=zoom>Zoom: <button data-z=0>fit (f)</button> <button data-z=1>1:1 (1)</button> <button data-z=2>2×</button> <button data-z=4>4×</button> <button data-z=8>8×</button></p>`;
     for (const v of c.images) h += imageHtml(c, v);
     h += `<details><summary>parameters, timings</summary>${table(c.about)}${table(c.params)}${table(c.times)}</details>`;
