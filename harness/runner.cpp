@@ -160,6 +160,9 @@ double raw_mismatch(const cv::Mat& a, const cv::Mat& b, resemble::Mode mode) {
   return resemble::compare(a, b, o).raw_mismatch_percentage;
 }
 
+// The file type of a case's images: ".png", or folder mode's ".exr".
+std::string ext_of(const Case& c) { return c.source ? c.source->ext : std::string(".png"); }
+
 // The images a case keeps in its report folder: the three renders, or an image case's own.
 std::vector<std::string> kept_images(const Case& c) {
   if (c.source) return c.images;
@@ -241,18 +244,18 @@ void produce_images(const Case& c, const fs::path& case_dir, CaseResult& r, Rend
                                                          " (" + from[i].string() + ")");
     }
     out.png[name] = read_file(from[i]);
-    check_png(out.png[name], from[i].string());
-    keep_in_report(case_dir / (name + ".png"), out.png[name]);
+    if (src.ext == ".png") check_png(out.png[name], from[i].string());
+    keep_in_report(case_dir / (name + src.ext), out.png[name]);
   }
 }
 
 bool reuse_render(const Case& c, const CaseResult& prev, const fs::path& case_dir, CaseResult& r,
                   Rendered& out) {
   for (const std::string& name : kept_images(c)) {
-    if (!fs::is_regular_file(case_dir / (name + ".png"))) return false;
+    if (!fs::is_regular_file(case_dir / (name + ext_of(c)))) return false;
   }
   for (const std::string& name : kept_images(c)) {
-    out.png[name] = read_file(case_dir / (name + ".png"));
+    out.png[name] = read_file(case_dir / (name + ext_of(c)));
   }
   r.times = prev.times;
   r.ao_effect_less = prev.ao_effect_less, r.ao_effect_nothing = prev.ao_effect_nothing;
@@ -302,7 +305,7 @@ CaseResult skeleton(const Case& c) {
       for (const fs::path& f : src.files) r.source += (r.source.empty() ? "" : " ") + f.string();
     }
     for (const auto& [k, v] : c.values.items()) r.params[k] = v;
-    for (const std::string& image : c.images) r.files[image] = c.id + "/" + image + ".png";
+    for (const std::string& image : c.images) r.files[image] = c.id + "/" + image + src.ext;
     return r;
   }
   r.scene = c.scene->name, r.view = c.view;
@@ -349,6 +352,29 @@ std::vector<fs::path> goldens_of(const Suite& suite, const Case& c, const std::s
   return accepted_goldens(suite.goldens / c.id, image, platform);
 }
 
+// An image no decoder here reads (folder mode's EXR): identical bytes pass, others fail.
+ImageVerdict judge_bytes(const std::string& image, const std::vector<unsigned char>& bytes,
+                         const std::vector<fs::path>& goldens) {
+  ImageVerdict v;
+  v.image = image;
+  if (goldens.empty()) {
+    v.status = Status::kNew, v.message = "no golden yet";
+    return v;
+  }
+  v.golden = goldens.front();
+  try {
+    v.identical = read_file(v.golden) == bytes;
+  } catch (const std::exception& e) {
+    v.status = Status::kError, v.message = e.what();
+    return v;
+  }
+  v.status = v.identical ? Status::kPass : Status::kFail;
+  v.mismatch_percent = v.identical ? 0 : 100;
+  v.mismatch_text = v.identical ? "0.00" : "100.00";
+  if (!v.identical) v.message = "the EXR files differ (EXR images are compared byte for byte)";
+  return v;
+}
+
 void judge_case(const Suite& suite, const Case& c, const std::string& platform, const RunOptions& o,
                 const std::optional<CaseResult>& prev, CaseResult& r, Rendered& images) {
   const fs::path case_dir = o.report_dir / "cases" / c.id;
@@ -366,8 +392,10 @@ void judge_case(const Suite& suite, const Case& c, const std::string& platform, 
   r.status = Status::kPass;
   for (std::size_t i = 0; i < c.images.size(); ++i) {
     const std::string& name = c.images[i];
-    ImageVerdict v = judge(name, images.png.at(name), pixels(images, name, case_dir), goldens[i],
-                           c.tolerance, true);
+    ImageVerdict v = ext_of(c) == ".png"
+                         ? judge(name, images.png.at(name), pixels(images, name, case_dir),
+                                 goldens[i], c.tolerance, true)
+                         : judge_bytes(name, images.png.at(name), goldens[i]);
     const bool show = v.status == Status::kFail || o.diff_all;
     if (!v.diff.empty() && show) {
       write_png_rgba8(case_dir / ("diff_" + name + ".png"), v.diff);
@@ -376,10 +404,10 @@ void judge_case(const Suite& suite, const Case& c, const std::string& platform, 
     if (!v.identical && !v.golden.empty() && v.status != Status::kError) {
       // A copy written under a temporary name and renamed: never a truncated golden image in
       // the report, even on a full disk.
-      keep_in_report(case_dir / ("golden_" + name + ".png"), read_file(v.golden));
-      r.files["golden:" + name] = c.id + "/golden_" + name + ".png";
+      keep_in_report(case_dir / ("golden_" + name + ext_of(c)), read_file(v.golden));
+      r.files["golden:" + name] = c.id + "/golden_" + name + ext_of(c);
     } else if (v.identical) {
-      r.files["golden:" + name] = c.id + "/" + name + ".png";
+      r.files["golden:" + name] = c.id + "/" + name + ext_of(c);
     }
     if (r.message.empty() && v.status != Status::kPass) r.message = name + ": " + v.message;
     r.status = worst(r.status, v.status);
@@ -393,8 +421,8 @@ void judge_deleted(const Case& c, const RunOptions& o, CaseResult& r) {
   const fs::path case_dir = o.report_dir / "cases" / c.id;
   fs::create_directories(case_dir);
   r.files.clear();
-  keep_in_report(case_dir / "golden_image.png", read_file(c.source->golden_file));
-  r.files["golden:image"] = c.id + "/golden_image.png";
+  keep_in_report(case_dir / ("golden_image" + c.source->ext), read_file(c.source->golden_file));
+  r.files["golden:image"] = c.id + "/golden_image" + c.source->ext;
   r.status = Status::kFail;
   r.message = "deleted: only in the expected folder";
   ImageVerdict v;
@@ -650,10 +678,10 @@ RunResults bless(const Suite& suite, const BlessOptions& b) {
           }
           if (!deleted) {
             for (const std::string& image : c.images) {
-              const fs::path f = b.run.report_dir / "cases" / c.id / (image + ".png");
+              const fs::path f = b.run.report_dir / "cases" / c.id / (image + ext_of(c));
               try {
                 images.png[image] = read_file(f);
-                check_png(images.png[image], f.string());
+                if (ext_of(c) == ".png") check_png(images.png[image], f.string());
               } catch (const std::exception& e) {
                 throw std::runtime_error(std::string("the report's image is unusable: ") +
                                          e.what() + "; its goldens are untouched");

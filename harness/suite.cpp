@@ -403,7 +403,8 @@ Suite folder_suite(const fs::path& actual, const fs::path& expected, const Toler
     }
     fs::recursive_directory_iterator it(root, ec), end;
     for (; !ec && it != end; it.increment(ec)) {
-      if (!it->is_regular_file() || it->path().extension() != ".png") continue;
+      const fs::path ext = it->path().extension();
+      if (!it->is_regular_file() || (ext != ".png" && ext != ".exr")) continue;
       const std::string rel = fs::relative(it->path(), root).generic_string();
       if (rel.empty() || rel.front() == '.') continue;
       (is_actual ? paths[rel].first : paths[rel].second) = true;
@@ -443,6 +444,7 @@ Suite folder_suite(const fs::path& actual, const fs::path& expected, const Toler
     src->golden_file = expected / rel;
     src->files.push_back(actual / rel);
     src->deleted = !where.first;
+    src->ext = fs::path(rel).extension().string();
     Case k;
     k.id = id;
     k.images = {"image"};

@@ -274,36 +274,43 @@ TEST_F(ImageCases, FolderModeReportsChangedNewAndDeletedAndBlessAcceptsThem) {
     fs::copy_file(from, dir_ / to);
   }
   std::ofstream(dir_ / "actual" / "notes.txt") << "not an image";
+  // EXR files are paired too, and compared byte for byte.
+  std::ofstream(dir_ / "actual" / "depth.exr") << "v1";
+  std::ofstream(dir_ / "expected" / "depth.exr") << "v2";
+  std::ofstream(dir_ / "actual" / "sub" / "same.exr") << "v1";
+  std::ofstream(dir_ / "expected" / "sub" / "same.exr") << "v1";
   test::Outcome r = aosuite("check --actual actual --expected expected --report rep --junit j.xml");
   EXPECT_EQ(r.rc, 1) << r.out << r.err;
-  EXPECT_NE(r.out.find("5 images: 2 unchanged, 1 changed, 1 new, 1 deleted, 0 errors"),
+  EXPECT_NE(r.out.find("7 images: 3 unchanged, 2 changed, 1 new, 1 deleted, 0 errors"),
             std::string::npos)
       << r.out;
   EXPECT_NE(r.out.find("sub__deep_one.png  sub/deep one.png"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("deleted: only in the expected folder"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("aosuite bless --actual actual --expected expected --filter "
-                       "'^(changed\\.png|gone\\.png|new\\.png)$'"),
+                       "'^(changed\\.png|depth\\.exr|gone\\.png|new\\.png)$'"),
             std::string::npos)
       << r.out;
   const auto results = nlohmann::json::parse(read_text(dir_ / "rep" / "results.json"));
-  EXPECT_EQ(results["cases"].size(), 5u);
+  EXPECT_EQ(results["cases"].size(), 7u);
+  EXPECT_NE(r.out.find("the EXR files differ"), std::string::npos) << r.out;
   EXPECT_EQ(results["cases"][0]["kind"], "folder");
   EXPECT_TRUE(fs::exists(dir_ / "rep" / "index.html"));
   EXPECT_TRUE(fs::exists(dir_ / "rep" / "cases" / "changed.png" / "diff_image.png"));
-  EXPECT_NE(read_text(dir_ / "j.xml").find("tests=\"5\" failures=\"3\""), std::string::npos);
+  EXPECT_NE(read_text(dir_ / "j.xml").find("tests=\"7\" failures=\"4\""), std::string::npos);
   const auto same_time = fs::last_write_time(dir_ / "expected" / "same.png");
 
   // Accept from the report: changed and new copied, the deleted one removed, the rest as it was.
   r = aosuite("bless --actual actual --expected expected --failed --report rep");
   EXPECT_EQ(r.rc, 0) << r.out << r.err;
-  EXPECT_NE(r.out.find("3 of 3 cases blessed"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("4 of 4 cases blessed"), std::string::npos) << r.out;
+  EXPECT_EQ(read_text(dir_ / "expected" / "depth.exr"), "v1");
   EXPECT_EQ(read_file(dir_ / "expected" / "changed.png"), read_file(green));
   EXPECT_EQ(read_file(dir_ / "expected" / "new.png"), read_file(green));
   EXPECT_FALSE(fs::exists(dir_ / "expected" / "gone.png"));
   EXPECT_EQ(fs::last_write_time(dir_ / "expected" / "same.png"), same_time);
   r = aosuite("check --actual actual --expected expected --report rep");
   EXPECT_EQ(r.rc, 0) << r.out << r.err;
-  EXPECT_NE(r.out.find("4 images: 4 unchanged, 0 changed, 0 new, 0 deleted"), std::string::npos)
+  EXPECT_NE(r.out.find("6 images: 6 unchanged, 0 changed, 0 new, 0 deleted"), std::string::npos)
       << r.out;
 
   // Plain bless (no report) accepts what the folders hold now.
@@ -311,7 +318,7 @@ TEST_F(ImageCases, FolderModeReportsChangedNewAndDeletedAndBlessAcceptsThem) {
   EXPECT_EQ(aosuite("check --actual actual --expected expected").rc, 1);
   r = aosuite("bless --actual actual --expected expected");
   EXPECT_EQ(r.rc, 0) << r.out << r.err;
-  EXPECT_NE(r.out.find("1 of 4 cases blessed"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("1 of 6 cases blessed"), std::string::npos) << r.out;
   EXPECT_EQ(read_file(dir_ / "expected" / "new.png"), read_file(red));
 
   // Nothing to compare is not green; half a folder pair is a one-line error.

@@ -123,13 +123,16 @@
   // --- one case beside the table -----------------------------------------------------------
   let current = -1, zoom = 0; // zoom 0: fit; else a factor of the natural size
   const detail = $("detail");
+  // Browsers show no EXR: such an image is a link to its file.
   const fig = (src, cls, caption) =>
-    src ? `<figure><img class="${cls}" src="${esc(url(src))}" alt="${esc(caption)}"><figcaption>${esc(caption)}</figcaption></figure>` : "";
+    !src ? "" : src.endsWith(".exr")
+      ? `<figure><a href="${esc(url(src))}">${esc(src.split("/").pop())}</a><figcaption>${esc(caption)} (EXR)</figcaption></figure>`
+      : `<figure><img class="${cls}" src="${esc(url(src))}" alt="${esc(caption)}"><figcaption>${esc(caption)}</figcaption></figure>`;
   function imageHtml(c, v) {
     let h = `<h3>${esc(v.image)} — <span class="${v.status}">${v.status}</span> ${esc(v.mismatch || "-")}% (allowed ${c.allowed}%), max channel Δ ${v.delta}${v.identical ? ", byte-identical" : ""}</h3>`;
     if (v.message) h += `<p>${esc(v.message)}</p>`;
     h += `<div class=images>${fig(v.golden, "", "golden")}${fig(v.new, "", "new")}${fig(v.diff, "", "diff")}`;
-    if (v.golden && v.new && !v.identical) {
+    if (v.golden && v.new && !v.identical && !v.new.endsWith(".exr")) {
       h += `<figure><div class=swap><img class=golden src="${esc(url(v.golden))}" alt=golden><img class=new src="${esc(url(v.new))}" alt=new></div><figcaption>golden; hover for new</figcaption></figure>`;
       h += `<figure><div class=slider><img src="${esc(url(v.golden))}" alt=golden><img class=top src="${esc(url(v.new))}" alt=new><input type=range min=0 max=100 value=50 aria-label="new vs golden"></div><figcaption>slider: new (left) over golden</figcaption></figure>`;
     }
