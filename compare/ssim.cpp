@@ -67,24 +67,33 @@ void load(const Input& in, const void* base, int y, double* out) {
   }
 }
 
-// out[x] = sum_k taps[k] * in[x + k].
+// out[x] = sum_k taps[k] * in[x + k], taps symmetric: the centre, then pairs of mirrored
+// inputs with their common weight.
 AOSUITE_SIMD_CLONES void filter_row(const double* in, const double* taps, int n, double* out,
                                     int w) {
-  std::fill(out, out + w, 0.0);
-  for (int k = 0; k < n; ++k) {
-    const double t = taps[k];
-    const double* src = in + k;
-    for (int x = 0; x < w; ++x) out[x] += t * src[x];
+  const int r = n / 2;
+  const double* c = in + r;
+  const double t0 = taps[r];
+  for (int x = 0; x < w; ++x) out[x] = t0 * c[x];
+  for (int k = 1; k <= r; ++k) {
+    const double t = taps[r + k];
+    const double* lo = c - k;
+    const double* hi = c + k;
+    for (int x = 0; x < w; ++x) out[x] += t * (lo[x] + hi[x]);
   }
 }
 
 AOSUITE_SIMD_CLONES void filter_column(const double* const* rows, const double* taps, int n,
                                        double* out, int w) {
-  std::fill(out, out + w, 0.0);
-  for (int k = 0; k < n; ++k) {
-    const double t = taps[k];
-    const double* src = rows[k];
-    for (int x = 0; x < w; ++x) out[x] += t * src[x];
+  const int r = n / 2;
+  const double t0 = taps[r];
+  const double* c = rows[r];
+  for (int x = 0; x < w; ++x) out[x] = t0 * c[x];
+  for (int k = 1; k <= r; ++k) {
+    const double t = taps[r + k];
+    const double* lo = rows[r - k];
+    const double* hi = rows[r + k];
+    for (int x = 0; x < w; ++x) out[x] += t * (lo[x] + hi[x]);
   }
 }
 
@@ -93,20 +102,28 @@ AOSUITE_SIMD_CLONES void products(const double* a, const double* b, double* aa, 
   for (int i = 0; i < n; ++i) aa[i] = a[i] * a[i], bb[i] = b[i] * b[i], ab[i] = a[i] * b[i];
 }
 
-// The SSIM of one row from its filtered moments; returns the sum over [x0, x1).
-AOSUITE_SIMD_CLONES double ssim_row(const double* const* m, double c1, double c2, float* out, int w,
-                                    int x0, int x1) {
-  double sum = 0;
+// The SSIM of one row from its filtered moments, into `out`.
+AOSUITE_SIMD_CLONES void ssim_row(const double* __restrict ua_row, const double* __restrict ub_row,
+                                  const double* __restrict aa_row, const double* __restrict bb_row,
+                                  const double* __restrict ab_row, double c1, double c2,
+                                  double* __restrict out, int w) {
   for (int x = 0; x < w; ++x) {
-    const double ua = m[0][x], ub = m[1][x];
-    const double va = m[2][x] - ua * ua, vb = m[3][x] - ub * ub, cov = m[4][x] - ua * ub;
+    const double ua = ua_row[x], ub = ub_row[x];
+    const double va = aa_row[x] - ua * ua, vb = bb_row[x] - ub * ub, cov = ab_row[x] - ua * ub;
     const double num = (2 * ua * ub + c1) * (2 * cov + c2);
     const double den = (ua * ua + ub * ub + c1) * (va + vb + c2);
-    const double s = den > 0 ? num / den : 1.0;
-    if (out) out[x] = static_cast<float>(s);
-    sum += (x >= x0 && x < x1) ? s : 0.0;
+    out[x] = den > 0 ? num / den : 1.0;
   }
-  return sum;
+}
+
+// Sum of v[x0, x1) in four interleaved partial sums (a fixed order, so results do not depend
+// on the machine).
+double row_sum(const double* v, int x0, int x1) {
+  double s[4] = {0, 0, 0, 0};
+  int x = x0;
+  for (; x + 4 <= x1; x += 4) s[0] += v[x], s[1] += v[x + 1], s[2] += v[x + 2], s[3] += v[x + 3];
+  for (; x < x1; ++x) s[0] += v[x];
+  return (s[0] + s[1]) + (s[2] + s[3]);
 }
 
 // Sum of the SSIM map over the crop window, for one channel; the map into `out` if given.
@@ -144,6 +161,7 @@ double channel_sum(const Input& in, const Options& o, const std::vector<double>&
     };
     for (int j = y0 - r; j < y0 + r; ++j) horizontal(j);
     const double* m[5];
+    std::vector<double> s_row(W);
     double sum = 0;
     for (int y = y0; y < y1; ++y) {
       horizontal(y + r);
@@ -152,8 +170,12 @@ double channel_sum(const Input& in, const Options& o, const std::vector<double>&
         filter_column(rows.data(), taps.data(), n, acc.data() + std::size_t(q) * W, w);
         m[q] = acc.data() + std::size_t(q) * W;
       }
-      const double s = ssim_row(m, c1, c2, out ? out + std::size_t(y) * W : nullptr, w, x0, x1);
-      if (y >= cy0 && y < cy1) sum += s;
+      ssim_row(m[0], m[1], m[2], m[3], m[4], c1, c2, s_row.data(), w);
+      if (out) {
+        float* map_row = out + std::size_t(y) * W;
+        for (int x = 0; x < w; ++x) map_row[x] = static_cast<float>(s_row[std::size_t(x)]);
+      }
+      if (y >= cy0 && y < cy1) sum += row_sum(s_row.data(), x0, x1);
     }
     band_sums[std::size_t(y0)] = sum;
   });
