@@ -457,7 +457,7 @@ float kth_smallest(const std::vector<float>& v, std::size_t k) {
 }
 
 // Pooling (tool/pooling.h): mean, min, max, weighted percentiles of values in [0, 1].
-void pool(FlipResult& r) {
+void pool(FlipResult& r, bool tool_float) {
   const std::vector<float>& m = r.error_map;
   const std::size_t n = m.size();
   // Buckets by the top 16 bits of the (non-negative) float: count and sum of each.
@@ -499,6 +499,26 @@ void pool(FlipResult& r) {
     }
     return in_bucket.empty() ? hi : in_bucket.back();
   };
+  if (tool_float) {
+    // tool/pooling.h's arithmetic: float sums in row order, and over the sorted values.
+    float chain = 0.0f;
+    for (float x : m) chain += x;
+    r.mean = n ? double(chain / static_cast<float>(n)) : 0.0;
+    std::vector<float> sorted(m);
+    std::sort(sorted.begin(), sorted.end());
+    auto tool_weighted = [&](float p) {
+      float running = 0.0f;
+      for (float x : sorted) {
+        running += x;
+        if (running > p * chain) return x;
+      }
+      return 0.0f;
+    };
+    r.weighted_median = tool_weighted(0.5f);
+    r.first_weighted_quartile = tool_weighted(0.25f);
+    r.third_weighted_quartile = tool_weighted(0.75f);
+    return;
+  }
   r.weighted_median = weighted(0.5);
   r.first_weighted_quartile = weighted(0.25);
   r.third_weighted_quartile = weighted(0.75);
@@ -519,7 +539,7 @@ FlipResult run(const Source& s, int w, int h, const Options& o, const std::vecto
   parallel_rows(w, h, [&](int y0, int y1) { flip_band(s, f, pc, scales, map, w, h, y0, y1); });
   // NaN cannot arise from finite inputs; this keeps the promise for any input.
   for (float& x : r.error_map) x = x >= 0.0f ? x : 0.0f;
-  pool(r);
+  pool(r, o.tool_float_pooling);
   return r;
 }
 

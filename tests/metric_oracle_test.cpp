@@ -48,7 +48,7 @@ TEST(MetricOracle, FlipAndSsimMatchTheReferenceImplementations) {
   ASSERT_GE(pairs.size(), 200u);
   ASSERT_EQ(pairs.size(), expected.size()) << "regenerate tests/data/metric_oracle.json";
 
-  Deviation mean_dev, pooled_dev, ssim_dev;
+  Deviation mean_dev, tool_mean_dev, pooled_dev, ssim_dev;
   int flip_checked = 0, ssim_checked = 0;
   for (const auto& p : pairs) {
     SCOPED_TRACE(p.name);
@@ -80,6 +80,17 @@ TEST(MetricOracle, FlipAndSsimMatchTheReferenceImplementations) {
       EXPECT_EQ(r.num_exposures, f.at("num_exposures").get<int>());
     }
     ++flip_checked;
+    // The tool's float pooling, emulated: its mean to the last bits.
+    flip::Options tool_like = o;
+    tool_like.tool_float_pooling = true;
+    const auto t = flip::compare(p.a, p.b, p.hdr, tool_like);
+    const double dt = std::abs(t.mean - f.at("mean").get<double>());
+    EXPECT_LE(dt, 2e-6) << "tool-pooled mean " << t.mean;
+    tool_mean_dev.update(dt, p.name);
+    for (const auto& [key, got] : {std::pair{"weighted_median", t.weighted_median},
+                                   std::pair{"first_weighted_quartile", t.first_weighted_quartile},
+                                   std::pair{"third_weighted_quartile", t.third_weighted_quartile}})
+      EXPECT_LE(std::abs(got - f.at(key).get<double>()), 2e-5) << "tool-pooled " << key;
 
     auto check_ssim = [&](const char* key, double got) {
       if (!e.contains(key)) return;
@@ -112,10 +123,12 @@ TEST(MetricOracle, FlipAndSsimMatchTheReferenceImplementations) {
     }
   }
   std::printf(
-      "FLIP: %d pairs, max |mean - tool| %.3g (%s), max |pooled - tool| %.3g (%s)\n"
+      "FLIP: %d pairs, max |mean - tool| %.3g (%s), with tool_float_pooling %.3g (%s), max "
+      "|pooled - tool| %.3g (%s)\n"
       "SSIM: %d values, max |ssim - skimage| %.3g (%s)\n",
-      flip_checked, mean_dev.value, mean_dev.where.c_str(), pooled_dev.value,
-      pooled_dev.where.c_str(), ssim_checked, ssim_dev.value, ssim_dev.where.c_str());
+      flip_checked, mean_dev.value, mean_dev.where.c_str(), tool_mean_dev.value,
+      tool_mean_dev.where.c_str(), pooled_dev.value, pooled_dev.where.c_str(), ssim_checked,
+      ssim_dev.value, ssim_dev.where.c_str());
 }
 
 // Properties that need no oracle.
