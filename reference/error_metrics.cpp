@@ -5,47 +5,10 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "compare/ssim.hpp"
+
 namespace aosuite::reference {
 namespace {
-
-constexpr int kWindowRadius = 5;  // 11 taps
-constexpr double kSigma = 1.5;
-
-std::array<float, 2 * kWindowRadius + 1> gaussian_taps() {
-  std::array<float, 2 * kWindowRadius + 1> w{};
-  double sum = 0;
-  for (int i = -kWindowRadius; i <= kWindowRadius; ++i)
-    sum += std::exp(-i * i / (2 * kSigma * kSigma));
-  for (int i = -kWindowRadius; i <= kWindowRadius; ++i)
-    w[i + kWindowRadius] = static_cast<float>(std::exp(-i * i / (2 * kSigma * kSigma)) / sum);
-  return w;
-}
-
-// Separable Gaussian with replicated edges (only OpenCV core is linked, not imgproc).
-cv::Mat gaussian_blur(const cv::Mat& in) {
-  static const auto taps = gaussian_taps();
-  const int w = in.cols, h = in.rows;
-  cv::Mat across(in.size(), CV_32F), out(in.size(), CV_32F);
-  for (int y = 0; y < h; ++y) {
-    const float* src = in.ptr<float>(y);
-    float* dst = across.ptr<float>(y);
-    for (int x = 0; x < w; ++x) {
-      float s = 0;
-      for (int k = -kWindowRadius; k <= kWindowRadius; ++k)
-        s += taps[k + kWindowRadius] * src[std::clamp(x + k, 0, w - 1)];
-      dst[x] = s;
-    }
-  }
-  for (int y = 0; y < h; ++y) {
-    float* dst = out.ptr<float>(y);
-    std::fill(dst, dst + w, 0.0f);
-    for (int k = -kWindowRadius; k <= kWindowRadius; ++k) {
-      const float* src = across.ptr<float>(std::clamp(y + k, 0, h - 1));
-      for (int x = 0; x < w; ++x) dst[x] += taps[k + kWindowRadius] * src[x];
-    }
-  }
-  return out;
-}
 
 ErrorStats stats(const cv::Mat& est, const cv::Mat& ref, const cv::Mat& ssim, const cv::Mat& mask,
                  int rays) {
@@ -101,20 +64,15 @@ cv::Mat depth_edge_mask(const cv::Mat& depth, float relative_threshold) {
 }
 
 cv::Mat ssim_map(const cv::Mat& a, const cv::Mat& b) {
-  constexpr float c1 = 0.01f * 0.01f, c2 = 0.03f * 0.03f;
-  const cv::Mat mu_a = gaussian_blur(a), mu_b = gaussian_blur(b);
-  const cv::Mat aa = gaussian_blur(a.mul(a)), bb = gaussian_blur(b.mul(b)),
-                ab = gaussian_blur(a.mul(b));
+  // The project's one SSIM (compare/ssim.hpp), with this module's conventions: data in
+  // [0, 1] and replicated borders (the masks keep pixels away from the border anyway).
+  ssim::Options o;
+  o.data_range = 1.0;
+  o.border = ssim::Border::replicate;
+  const cv::Mat ca = a.isContinuous() ? a : a.clone(), cb = b.isContinuous() ? b : b.clone();
   cv::Mat out(a.size(), CV_32F);
-  for (int y = 0; y < a.rows; ++y) {
-    for (int x = 0; x < a.cols; ++x) {
-      const float ma = mu_a.at<float>(y, x), mb = mu_b.at<float>(y, x);
-      const float va = aa.at<float>(y, x) - ma * ma, vb = bb.at<float>(y, x) - mb * mb,
-                  cov = ab.at<float>(y, x) - ma * mb;
-      out.at<float>(y, x) =
-          ((2 * ma * mb + c1) * (2 * cov + c2)) / ((ma * ma + mb * mb + c1) * (va + vb + c2));
-    }
-  }
+  ssim::ssim_map({ca.ptr<float>(), ca.cols, ca.rows, ca.step1(), 1},
+                 {cb.ptr<float>(), cb.cols, cb.rows, cb.step1(), 1}, o, out.ptr<float>());
   return out;
 }
 

@@ -34,7 +34,8 @@ cv::Mat geometry_mask(const cv::Mat& depth, int border);
 cv::Mat depth_edge_mask(const cv::Mat& depth, float relative_threshold);
 
 // SSIM map (Wang et al. 2004) with an 11x11 Gaussian window of sigma 1.5 (edges replicated),
-// C1 = 0.01^2 and C2 = 0.03^2 for data in [0, 1]; CV_32F.
+// C1 = 0.01^2 and C2 = 0.03^2 for data in [0, 1]; CV_32F. Computed by compare/ssim.hpp (in
+// double; the project's one SSIM).
 cv::Mat ssim_map(const cv::Mat& a, const cv::Mat& b);
 
 // Throws std::invalid_argument unless estimate, reference and depth are CV_32F of one size.

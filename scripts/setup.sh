@@ -11,6 +11,9 @@ PACKAGES=(
   libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri libglm-dev libopenimageio-dev
   libtomlplusplus-dev libassimp-dev libxxhash-dev libembree-dev
   chromium
+  # scikit-image 0.19: the SSIM oracle of the oracle-live test (tests/oracles/metric_oracle.py);
+  # the unit tests read its committed numbers and do not need it.
+  python3-skimage
 )
 
 # OSMesa is optional (Mesa 25.1 removed it): installed where the distribution still has it, for
