@@ -135,15 +135,8 @@ double margin_value(const CaseResult& c) {
 }
 
 std::string margin(const CaseResult& c) {
-  double worst = c.tolerance.max_mismatch_percent;
-  bool any = false;
-  for (const ImageVerdict& v : c.images) {
-    if (v.status == Status::kPass || v.status == Status::kFail) {
-      worst = std::min(worst, c.tolerance.max_mismatch_percent - v.mismatch_percent);
-      any = true;
-    }
-  }
-  return any ? fmt::format("{:+.4f}", worst) : "";
+  const double m = margin_value(c);
+  return std::isnan(m) ? "" : fmt::format("{:+.4f}", m);
 }
 
 // The thesis's Tables 11-14: per technique, how much of the image AO changes.

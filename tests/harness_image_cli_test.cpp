@@ -18,11 +18,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string read_text(const fs::path& p) {
-  std::stringstream s;
-  s << std::ifstream(p).rdbuf();
-  return s.str();
-}
+using test::read_text;
 
 cv::Mat flat(int w, int h, cv::Scalar rgba) { return cv::Mat(h, w, CV_8UC4, rgba); }
 

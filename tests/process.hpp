@@ -29,4 +29,11 @@ inline Outcome run_shell(const std::string& command, const std::filesystem::path
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out, err.str()};
 }
 
+// A whole file as text ("" when it cannot be read).
+inline std::string read_text(const std::filesystem::path& p) {
+  std::stringstream s;
+  s << std::ifstream(p).rdbuf();
+  return s.str();
+}
+
 }  // namespace aosuite::test
