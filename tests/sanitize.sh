@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Builds aosuite with AddressSanitizer + UndefinedBehaviorSanitizer (-DAOSUITE_SANITIZE=ON) into
 # a second build folder and runs the unit, renderer and harness tests there. Any ASan, UBSan or
-# LeakSanitizer report fails the run. Leaks are suppressed only inside Mesa, LLVM and the GL/EGL
-# loaders (tests/sanitize_lsan.supp), never in aosuite's own code.
+# LeakSanitizer report fails the run. Leaks are suppressed only in third-party libraries
+# (tests/sanitize_lsan.supp: today libOSMesa alone), never in aosuite's own code.
 # Usage: tests/sanitize.sh SOURCE_DIR BUILD_DIR [extra ctest arguments]
 set -euo pipefail
 src=$(cd "$1" && pwd) build=$2
