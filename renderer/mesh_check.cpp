@@ -211,8 +211,6 @@ std::uint64_t read_uint(const unsigned char* p, int size, bool big) {
 void check_ply_binary(std::string_view name, const PlyHeader& h,
                       std::span<const unsigned char> bytes) {
   std::size_t pos = h.body;
-  // No more entries than bytes (an entry of no properties counts as one, so a file cannot
-  // declare 2^64 empty ones either).
   const bool big = h.format == PlyFormat::kBig;
   for (const PlyElement& e : h.elements) {
     // Consumes `n` items of `size` bytes; the division keeps a lying count from overflowing.
@@ -247,6 +245,8 @@ void check_ply(std::string_view name, std::span<const unsigned char> bytes) {
   if (h.body > bytes.size()) in.fail("truncated: no data after end_header");
   const int last_line = 1 + static_cast<int>(std::count(text.begin(), text.end(), '\n'));
   if (h.format == PlyFormat::kAscii) return check_ply_ascii(h, in, text.substr(h.body), last_line);
+  // No more entries than bytes (an entry of no properties counts as one, so a file cannot
+  // declare 2^64 empty ones either).
   check_counts(in, h, bytes.size() - h.body, "bytes", last_line);
   check_ply_binary(name, h, bytes);
 }
