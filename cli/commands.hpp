@@ -6,6 +6,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "compare/printable.hpp"
+
 namespace aosuite::cli {
 
 inline constexpr int kExitSame = 0;
@@ -20,7 +22,8 @@ void guarded(CLI::App* cmd, int& rc, const char* name, F f) {
     try {
       rc = f();
     } catch (const std::exception& e) {
-      fmt::print(stderr, "aosuite {}: {}\n", name, e.what());
+      // Messages may quote files and paths: never raw bytes to the terminal.
+      fmt::print(stderr, "aosuite {}: {}\n", name, aosuite::printable(e.what()));
       rc = kExitError;
     }
   });

@@ -2,15 +2,21 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <charconv>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "compare/image_io.hpp"
+#include "compare/printable.hpp"
 
 namespace aosuite::renderer {
 namespace {
+
+template <typename T>
+std::optional<T> parse(std::string_view t);
 
 // Whitespace-separated tokens of a text, with the line each is on.
 class Tokens {
@@ -38,19 +44,21 @@ class Tokens {
     return rest;
   }
   std::size_t offset() const { return pos_; }
-  template <typename T>
-  T number(std::string_view what) {
+  void seek(std::size_t pos) { pos_ = pos; }
+  int line() const { return line_; }
+  // The next token as a number; `what()` describes it for a message (made only on failure).
+  template <typename T, typename What>
+  T number(What&& what) {
     const std::string_view t = next();
-    if (t.empty()) fail(fmt::format("truncated: {} missing", what));
-    T v{};
-    const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
-    if (ec != std::errc() || end != t.data() + t.size()) {
-      fail(fmt::format("'{}' is not a valid {}", t, what));
-    }
-    return v;
+    if (t.empty()) fail(fmt::format("truncated: {} missing", what()));
+    const std::optional<T> v = parse<T>(t);
+    if (!v) fail(fmt::format("'{}' is not a valid {}", t.substr(0, 64), what()));
+    return *v;
   }
-  [[noreturn]] void fail(const std::string& why) const {
-    throw FileError(fmt::format("{}:{}: {}", name_, line_, why));
+  [[noreturn]] void fail(std::string_view why) const { fail_at(line_, why); }
+  // Messages quote the file's bytes: escaped (\xNN), never raw.
+  [[noreturn]] void fail_at(int line, std::string_view why) const {
+    throw FileError(printable(fmt::format("{}:{}: {}", name_, line, why)));
   }
 
  private:
@@ -60,6 +68,15 @@ class Tokens {
   std::size_t pos_ = 0;
   int line_ = 1;
 };
+
+// A whole token as a number (no sign for unsigned types), or nothing.
+template <typename T>
+std::optional<T> parse(std::string_view t) {
+  T v{};
+  const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
+  if (ec != std::errc() || end != t.data() + t.size() || t.empty()) return std::nullopt;
+  return v;
+}
 
 std::string_view as_text(std::span<const unsigned char> bytes) {
   return {reinterpret_cast<const char*>(bytes.data()), bytes.size()};
@@ -74,6 +91,7 @@ struct PlyElement {
   std::string name;
   std::uint64_t count = 0;
   std::vector<PlyProperty> properties;
+  int line = 0;  // of its declaration
 };
 enum class PlyFormat { kAscii, kLittle, kBig };
 struct PlyHeader {
@@ -101,7 +119,7 @@ PlyHeader parse_ply_header(Tokens& in) {
   bool has_format = false;
   auto type = [&](std::string_view t) {
     const int size = ply_type_size(t);
-    if (size == 0) in.fail(fmt::format("unknown PLY type '{}'", t));
+    if (size == 0) in.fail(fmt::format("unknown PLY type '{}'", t.substr(0, 64)));
     return size;
   };
   for (std::string_view key = in.next();; key = in.next()) {
@@ -118,13 +136,13 @@ PlyHeader parse_ply_header(Tokens& in) {
       } else if (f == "binary_big_endian") {
         h.format = PlyFormat::kBig;
       } else {
-        in.fail(fmt::format("unknown format '{}'", f));
+        in.fail(fmt::format("unknown format '{}'", f.substr(0, 64)));
       }
       has_format = true;
       in.rest_of_line();
     } else if (key == "element") {
-      PlyElement e{std::string(in.next()), 0, {}};
-      e.count = in.number<std::uint64_t>("element count");
+      PlyElement e{std::string(in.next()), 0, {}, in.line()};
+      e.count = in.number<std::uint64_t>([] { return "element count"; });
       h.elements.push_back(std::move(e));
     } else if (key == "property") {
       if (h.elements.empty()) in.fail("property before any element");
@@ -138,7 +156,7 @@ PlyHeader parse_ply_header(Tokens& in) {
       in.rest_of_line();  // the property's name
       h.elements.back().properties.push_back(p);
     } else {
-      in.fail(fmt::format("unexpected '{}' in the header", key));
+      in.fail(fmt::format("unexpected '{}' in the header", key.substr(0, 64)));
     }
   }
   if (!has_format) in.fail("no format line in the header");
@@ -147,10 +165,34 @@ PlyHeader parse_ply_header(Tokens& in) {
   return h;
 }
 
-void check_ply_ascii(const PlyHeader& h, Tokens& in) {
+// Refuses a header whose element counts add up to more entries than `room` (lines or bytes
+// after the header) can hold, before anything loops over a count or allocates for one: a
+// count of 2^64-1 is refused at once, and assimp never sizes its element lists from it.
+void check_counts(const Tokens& in, const PlyHeader& h, std::uint64_t room, std::string_view unit,
+                  int last_line) {
+  std::uint64_t left = room;
   for (const PlyElement& e : h.elements) {
-    for (std::uint64_t i = 0; i < e.count; ++i) {
-      const std::string what = fmt::format("element '{}' {} of {}", e.name, i + 1, e.count);
+    if (e.count > left) {
+      in.fail_at(last_line,
+                 fmt::format("truncated: element '{}' {} of {} is missing (the header, line {}, "
+                             "declares more entries than the {} {} after it)",
+                             e.name, left + 1, e.count, e.line, room, unit));
+    }
+    left -= e.count;
+  }
+}
+
+void check_ply_ascii(const PlyHeader& h, Tokens& in, std::string_view body, int last_line) {
+  // One entry per line: no more entries than lines.
+  const auto lines = static_cast<std::uint64_t>(std::count(body.begin(), body.end(), '\n')) +
+                     (!body.empty() && body.back() != '\n');
+  check_counts(in, h, lines, "lines", last_line);
+  for (const PlyElement& e : h.elements) {
+    // Entries with no properties have nothing to check (nor any token to consume).
+    for (std::uint64_t i = 0; i < e.count && !e.properties.empty(); ++i) {
+      const auto what = [&] {
+        return fmt::format("element '{}' {} of {}", e.name, i + 1, e.count);
+      };
       for (const PlyProperty& p : e.properties) {
         const std::uint64_t n = p.count_size ? in.number<std::uint64_t>(what) : 1;
         for (std::uint64_t k = 0; k < n; ++k) in.number<double>(what);
@@ -174,8 +216,8 @@ void check_ply_binary(std::string_view name, const PlyHeader& h,
     // Consumes `n` items of `size` bytes; the division keeps a lying count from overflowing.
     auto need = [&](std::uint64_t n, int size, std::uint64_t i) {
       if (n > (bytes.size() - pos) / static_cast<std::uint64_t>(size)) {
-        throw FileError(fmt::format("{}: truncated: element '{}' {} of {} is cut off", name, e.name,
-                                    i + 1, e.count));
+        throw FileError(printable(fmt::format("{}: truncated: element '{}' {} of {} is cut off",
+                                              name, e.name, i + 1, e.count)));
       }
       pos += static_cast<std::size_t>(n) * static_cast<std::size_t>(size);
     };
@@ -197,37 +239,160 @@ void check_ply_binary(std::string_view name, const PlyHeader& h,
 }  // namespace
 
 void check_ply(std::string_view name, std::span<const unsigned char> bytes) {
-  Tokens in(name, as_text(bytes));
+  const std::string_view text = as_text(bytes);
+  Tokens in(name, text);
   const PlyHeader h = parse_ply_header(in);
   if (h.body > bytes.size()) in.fail("truncated: no data after end_header");
-  if (h.format == PlyFormat::kAscii) return check_ply_ascii(h, in);
+  const int last_line = 1 + static_cast<int>(std::count(text.begin(), text.end(), '\n'));
+  if (h.format == PlyFormat::kAscii) return check_ply_ascii(h, in, text.substr(h.body), last_line);
+  // No more entries than bytes (an entry of no properties counts as one, so a file cannot
+  // declare 2^64 empty ones either).
+  check_counts(in, h, bytes.size() - h.body, "bytes", last_line);
   check_ply_binary(name, h, bytes);
 }
 
+// OFF as assimp 5.2 reads it: the header as tokens ([ST][C][N][4][n]OFF, the dimension for
+// nOFF, then the vertex, face and edge counts; '#' comments between them), then one vertex or
+// face per line, where a line ends at \n, \r or \f, empty lines are skipped, '#' starts no
+// comment, and nothing after a NUL byte is read. It clamps out-of-range indices to the last
+// vertex, drops faces of 0 or more than 9 vertices, reads garbage as 0 and allocates what the
+// counts say, so each of those is refused here, with the line.
 void check_off(std::string_view name, std::span<const unsigned char> bytes) {
-  Tokens in(name, as_text(bytes), '#');
-  const std::string_view magic = in.next();
-  // Variants with colours or normals (COFF, NOFF, CNOFF) keep the face layout; other
-  // variants are left to the reader.
-  if (magic != "OFF" && magic != "COFF" && magic != "NOFF" && magic != "CNOFF") return;
-  const auto vertices = in.number<std::uint64_t>("vertex count");
-  const auto faces = in.number<std::uint64_t>("face count");
-  in.rest_of_line();  // the edge count, unused
-  for (std::uint64_t i = 0; i < vertices; ++i) {
-    const std::string what = fmt::format("vertex {} of {}", i + 1, vertices);
-    for (int k = 0; k < 3; ++k) in.number<double>(what);
-    in.rest_of_line();
+  const std::string_view text = as_text(bytes);
+  Tokens in(name, text, '#');
+  if (const std::size_t nul = text.find('\0'); nul != std::string_view::npos) {
+    in.fail_at(1 + static_cast<int>(std::count(text.begin(), text.begin() + nul, '\n')),
+               "a NUL byte (assimp reads nothing after it)");
   }
-  for (std::uint64_t i = 0; i < faces; ++i) {
-    const std::string what = fmt::format("face {} of {}", i + 1, faces);
-    const auto n = in.number<std::uint64_t>(what);
-    for (std::uint64_t k = 0; k < n; ++k) {
-      if (in.number<std::uint64_t>(what) >= vertices) {
-        in.fail(fmt::format("{}: vertex index out of range (the file has {} vertices)", what,
-                            vertices));
+  std::string_view magic = in.next();
+  const std::string_view header = magic;
+  const auto prefix = [&](std::string_view p) {
+    const bool has = magic.starts_with(p);
+    if (has) magic.remove_prefix(p.size());
+    return has;
+  };
+  prefix("ST"), prefix("C"), prefix("N");
+  const bool homogeneous = prefix("4"), has_dimension = prefix("n");
+  std::uint64_t dimensions = 3;
+  // assimp also takes a file with no header, but reads a first count that begins with 4 as the
+  // 4OFF prefix ("42 80 0" as 2 vertices): refused.
+  if (magic != "OFF") {
+    in.fail(fmt::format("not an OFF file: '{}' is not an OFF header ([ST][C][N][4][n]OFF)",
+                        header.substr(0, 64)));
+  }
+  const auto count = [&](const char* what) {
+    return in.number<std::uint64_t>([&] { return what; });
+  };
+  if (has_dimension) {
+    dimensions = count("nOFF dimension");
+    if (dimensions < 1 || dimensions > 3) in.fail("the nOFF dimension must be 1, 2 or 3");
+  }
+  const std::uint64_t vertices = count("vertex count");
+  const std::uint64_t faces = count("face count");
+  count("edge count");
+  if (vertices == 0) in.fail("no vertices");
+  if (faces == 0) in.fail("no faces");
+
+  // The body begins at the next token: spaces, line ends and comment lines are skipped.
+  std::size_t pos = in.offset();
+  int line = in.line();
+  for (;;) {
+    while (pos < text.size() &&
+           (text[pos] == ' ' || text[pos] == '\t' || text[pos] == '\r' || text[pos] == '\n')) {
+      line += text[pos++] == '\n';
+    }
+    if (pos == text.size() || text[pos] != '#') break;
+    while (pos < text.size() && text[pos] != '\n') ++pos;
+  }
+  // The body's lines as assimp cuts them, with the line number a text editor shows.
+  struct Line {
+    std::string_view text;
+    int number;
+  };
+  const auto is_end = [](char c) { return c == '\n' || c == '\r' || c == '\f'; };
+  const auto next_line = [&]() -> std::optional<Line> {
+    if (pos == text.size()) return std::nullopt;
+    const std::size_t start = pos;
+    while (pos < text.size() && !is_end(text[pos])) ++pos;
+    const Line l{text.substr(start, pos - start), line};
+    while (pos < text.size() && is_end(text[pos])) line += text[pos++] == '\n';
+    return l;
+  };
+  // Counted first, so no count runs past the file (nor allocates for more than it holds).
+  const std::size_t body = pos;
+  const int body_line = line;
+  std::uint64_t lines = 0;
+  int last_line = line;
+  while (const auto l = next_line()) {
+    ++lines;
+    last_line = l->number;
+    if (l->text.size() >= 4096) {
+      in.fail_at(l->number, "a line longer than 4095 characters (assimp cuts it in two)");
+    }
+  }
+  if (vertices > lines || faces > lines - vertices) {
+    in.fail_at(last_line, lines < vertices ? fmt::format("truncated: vertex {} of {} is missing",
+                                                         lines + 1, vertices)
+                                           : fmt::format("truncated: face {} of {} is missing",
+                                                         lines - vertices + 1, faces));
+  }
+  pos = body, line = body_line;
+
+  // Space- or tab-separated words of one line.
+  const auto words = [](std::string_view l) {
+    std::vector<std::string_view> out;
+    for (std::size_t i = 0; i < l.size();) {
+      while (i < l.size() && (l[i] == ' ' || l[i] == '\t')) ++i;
+      const std::size_t start = i;
+      while (i < l.size() && l[i] != ' ' && l[i] != '\t') ++i;
+      if (i > start) out.push_back(l.substr(start, i - start));
+    }
+    return out;
+  };
+  const std::size_t coordinates = dimensions + (homogeneous ? 1 : 0);
+  for (std::uint64_t i = 0; i < vertices; ++i) {
+    const Line l = *next_line();
+    const auto w = words(l.text);
+    for (std::size_t k = 0; k < coordinates; ++k) {
+      if (k >= w.size()) {
+        in.fail_at(l.number, fmt::format("vertex {} of {}: {} coordinates expected, {} found",
+                                         i + 1, vertices, coordinates, w.size()));
+      }
+      if (!parse<double>(w[k])) {
+        in.fail_at(l.number, fmt::format("'{}' is not a valid vertex {} of {}", w[k].substr(0, 64),
+                                         i + 1, vertices));
       }
     }
-    in.rest_of_line();  // an optional face colour
+  }
+  for (std::uint64_t i = 0; i < faces; ++i) {
+    const Line l = *next_line();
+    const auto w = words(l.text);
+    const auto what = [&] { return fmt::format("face {} of {}", i + 1, faces); };
+    const auto n = w.empty() ? std::nullopt : parse<std::uint64_t>(w[0]);
+    if (!n) {
+      in.fail_at(l.number, fmt::format("{}: '{}' is not a vertex count", what(),
+                                       w.empty() ? "" : w[0].substr(0, 64)));
+    }
+    if (*n < 1 || *n > 9) {
+      in.fail_at(l.number,
+                 fmt::format("{}: {} vertices (assimp reads faces of 1 to 9)", what(), *n));
+    }
+    if (w.size() < *n + 1) {
+      in.fail_at(l.number, fmt::format("truncated: {} has {} of its {} vertex indices", what(),
+                                       w.size() - 1, *n));
+    }
+    for (std::size_t k = 1; k <= *n; ++k) {
+      const auto index = parse<std::uint64_t>(w[k]);
+      if (!index) {
+        in.fail_at(l.number,
+                   fmt::format("'{}' is not a valid {} vertex index", w[k].substr(0, 64), what()));
+      }
+      if (*index >= vertices) {
+        in.fail_at(l.number,
+                   fmt::format("{}: vertex index {} out of range (the file has {} vertices)",
+                               what(), *index, vertices));
+      }
+    }
   }
 }
 

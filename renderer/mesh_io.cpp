@@ -9,13 +9,15 @@
 #include <cmath>
 
 #include "compare/image_io.hpp"
+#include "compare/printable.hpp"
 #include "renderer/mesh_check.hpp"
 
 namespace aosuite::renderer {
 namespace {
 
+// `why` may quote the file (assimp's messages do): escaped, as the path is.
 [[noreturn]] void fail(const std::filesystem::path& path, std::string_view why) {
-  throw FileError(fmt::format("{}: {}", path.string(), why));
+  throw FileError(printable(fmt::format("{}: {}", path.string(), why)));
 }
 
 std::string lower_extension(const std::filesystem::path& path) {
@@ -67,7 +69,12 @@ Mesh load_mesh(const std::filesystem::path& path) {
   if (ext != ".ply" && ext != ".obj" && ext != ".off") {
     fail(path, "unsupported mesh format (expected .ply, .obj or .off)");
   }
-  const std::vector<unsigned char> bytes = read_file(path);
+  std::vector<unsigned char> bytes;
+  try {
+    bytes = read_file(path);
+  } catch (const FileError& e) {
+    throw FileError(printable(e.what()));  // names the path
+  }
   if (ext == ".ply") check_ply(path.string(), bytes);
   if (ext == ".off") check_off(path.string(), bytes);
 

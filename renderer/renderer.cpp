@@ -13,6 +13,7 @@
 #include "renderer/params.hpp"
 #include "renderer/pmi_cache.hpp"
 #include "renderer/pmi_pass.hpp"
+#include "renderer/view_check.hpp"
 #include "renderer/viewpoint_sphere.hpp"
 
 namespace aosuite::renderer {
@@ -99,14 +100,8 @@ void validate(const View& view, const RenderSettings& s) {
   }
   check_params(s.params);
   if (s.technique == Technique::kPmi) make_icosphere(s.params.pmi.viewpoints);  // a bad count
-  if (!(view.near > 0) || !std::isfinite(view.near))
-    fail("view '" + view.name + "': near must be > 0");
-  if (!(view.fovy_degrees > 0 && view.fovy_degrees < 180))
-    fail("view '" + view.name + "': fovy must be in (0, 180)");
-  if (glm::length(view.target - view.eye) <= 0 ||
-      !std::isfinite(glm::length(view.target - view.eye))) {
-    fail("view '" + view.name + "': eye and target must differ");
-  }
+  if (const auto problem = view_problem(view))  // shared with scene files (view_check.hpp)
+    fail("view '" + view.name + "': " + problem->why);
 }
 
 }  // namespace

@@ -4,13 +4,19 @@
 #include <toml++/toml.h>
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
+#include <cstdint>
+#include <cstdlib>
 #include <set>
+#include <stdexcept>
 #include <string>
 
 #include "compare/image_io.hpp"
+#include "compare/printable.hpp"
 #include "renderer/mesh_io.hpp"
 #include "renderer/toml_reader.hpp"
+#include "renderer/view_check.hpp"
 
 namespace aosuite::renderer {
 namespace {
@@ -67,6 +73,22 @@ Mesh mesh_geometry(const SceneReader& r, const toml::table& t) {
   return m;
 }
 
+// The triangles a [[meshes]] entry makes, known before any geometry is: a sphere's from its
+// segments (as make_sphere builds it), a box's 12, a quad's or plane's 2. A mesh file's are
+// counted once read (its size bounds what reading it costs).
+std::uint64_t predicted_triangles(const SceneReader& r, const toml::table& t) {
+  if (const toml::node* n = t.get("sphere"); n && n->is_table()) {
+    std::uint64_t segments = 48;
+    if (const toml::node* seg = n->as_table()->get("segments")) {
+      segments = static_cast<std::uint64_t>(r.integer(*seg, "segments", 4, 1024));
+    }
+    return 2 * (segments / 2) * segments;
+  }
+  if (t.contains("box")) return 12;
+  if (t.contains("quad") || t.contains("plane")) return 2;
+  return 0;
+}
+
 Mesh read_mesh(const SceneReader& r, const toml::table& t) {
   r.only_keys(t, {"file", "box", "sphere", "quad", "plane", "fit", "scale", "rotate_degrees",
                   "on_ground", "translate", "colour"});
@@ -108,15 +130,17 @@ View read_view(const SceneReader& r, const toml::table& t) {
   if (const toml::node* n = t.get("up")) v.up = r.vec3(*n, "up");
   if (const toml::node* n = t.get("fovy_degrees")) {
     v.fovy_degrees = static_cast<float>(r.number(*n, "fovy_degrees"));
-    if (!(v.fovy_degrees > 0 && v.fovy_degrees < 180)) {
-      r.fail(n->source(), "fovy_degrees must be in (0, 180)");
-    }
   }
   if (const toml::node* n = t.get("near")) v.near = static_cast<float>(r.positive(*n, "near"));
-  // A camera needs a direction and an up that is not along it, else its basis is NaN.
+  // What the renderer requires (view_check.hpp), at the key at fault where the file has it.
+  if (const auto problem = view_problem(v)) {
+    const toml::node* at = t.get(problem->field);
+    r.fail(at ? at->source() : t.source(), problem->why);
+  }
+  // An up along the view direction leaves the camera's roll undefined; the renderer would
+  // quietly pick another, a scene file must say what it means.
   const glm::vec3 forward = v.target - v.eye;
   const float dir = glm::length(forward), side = glm::length(glm::cross(forward, v.up));
-  if (!(dir > 0 && std::isfinite(dir))) r.fail(t.source(), "eye and target must differ");
   if (!(side > 1e-6f * dir * glm::length(v.up))) {
     r.fail(t.source(), "up must not be parallel to the view direction");
   }
@@ -126,7 +150,12 @@ View read_view(const SceneReader& r, const toml::table& t) {
 }  // namespace
 
 Scene load_scene_file(const fs::path& path) {
-  const std::vector<unsigned char> bytes = read_file(path);
+  std::vector<unsigned char> bytes;
+  try {
+    bytes = read_file(path);
+  } catch (const FileError& e) {
+    throw FileError(printable(e.what()));  // names the path, escaped
+  }
   const std::string_view text(reinterpret_cast<const char*>(bytes.data()), bytes.size());
   const SceneReader r(path);
   toml::table root;
@@ -138,8 +167,28 @@ Scene load_scene_file(const fs::path& path) {
   r.only_keys(root, {"name", "meshes", "views"});
   Scene scene;
   scene.name = root.contains("name") ? r.name(*root.get("name"), "name") : path.stem().string();
-  for (const toml::table* t : r.tables(r.required(root, "meshes"), "meshes")) {
+  const std::vector<const toml::table*> meshes = r.tables(r.required(root, "meshes"), "meshes");
+  const std::uint64_t limit = max_scene_triangles();
+  auto over = [&](const toml::table& t, std::uint64_t triangles) {
+    r.fail(t.source(),
+           fmt::format("the scene would have {} triangles or more, above the limit of {} "
+                       "(AOSUITE_MAX_TRIANGLES sets it)",
+                       triangles, limit));
+  };
+  // Every primitive's triangles are counted before any is made (200 spheres of 1024 segments
+  // would be 210 M triangles, 10 GB, from a 14 KB file) ...
+  std::uint64_t triangles = 0;
+  for (const toml::table* t : meshes) {
+    triangles += predicted_triangles(r, *t);
+    if (triangles > limit) over(*t, triangles);
+  }
+  // ... and each mesh file's as it is read.
+  for (const toml::table* t : meshes) {
     scene.meshes.push_back(read_mesh(r, *t));
+    if (t->contains("file")) {
+      triangles += scene.meshes.back().triangles.size();
+      if (triangles > limit) over(*t, triangles);
+    }
   }
   std::set<std::string> names;
   for (const toml::table* t : r.tables(r.required(root, "views"), "views")) {
@@ -149,6 +198,19 @@ Scene load_scene_file(const fs::path& path) {
     }
   }
   return scene;
+}
+
+std::uint64_t max_scene_triangles() {
+  const char* env = std::getenv("AOSUITE_MAX_TRIANGLES");
+  if (!env || !*env) return kDefaultMaxSceneTriangles;
+  std::uint64_t v = 0;
+  const std::string_view text(env);
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (ec != std::errc() || end != text.data() + text.size() || v == 0) {
+    throw std::invalid_argument(
+        printable(fmt::format("AOSUITE_MAX_TRIANGLES='{}' is not a positive integer", text)));
+  }
+  return v;
 }
 
 Scene load_scene(std::string_view name_or_path) {

@@ -5,13 +5,17 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <limits>
 
 #include "compare/image_io.hpp"
+#include "compare/printable.hpp"
 
 namespace aosuite {
 
 void TomlReader::fail(const toml::source_region& at, std::string_view why) const {
-  throw FileError(fmt::format("{}:{}:{}: {}", file_.string(), at.begin.line, at.begin.column, why));
+  // `why` may quote the file (a key, a string, toml++'s description of bad bytes): escaped.
+  throw FileError(
+      printable(fmt::format("{}:{}:{}: {}", file_.string(), at.begin.line, at.begin.column, why)));
 }
 
 void TomlReader::only_keys(const toml::table& t,
@@ -75,6 +79,10 @@ double TomlReader::number(const toml::node& n, std::string_view what) const {
 double TomlReader::positive(const toml::node& n, std::string_view what) const {
   const double v = number(n, what);
   if (!(v > 0)) fail(n.source(), fmt::format("{} must be positive", what));
+  // Sizes are used as floats: one that rounds to 0 or to a denormal (1e-300) is no size.
+  if (!(static_cast<float>(v) >= std::numeric_limits<float>::min())) {
+    fail(n.source(), fmt::format("{} is too small (below 1.2e-38, the least normal float)", what));
+  }
   return v;
 }
 

@@ -30,6 +30,7 @@ class TomlReader {
   int integer(const toml::node& n, std::string_view what, std::int64_t lo, std::int64_t hi) const;
   // A finite number (integer or float); TOML's nan and inf are refused.
   double number(const toml::node& n, std::string_view what) const;
+  // A number() that is positive as a float too (at least the least normal float, 1.2e-38).
   double positive(const toml::node& n, std::string_view what) const;
   glm::vec3 vec3(const toml::node& n, std::string_view what) const;
   // A non-empty array of strings.

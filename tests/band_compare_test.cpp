@@ -146,7 +146,9 @@ TEST(BandCompare, CorruptFileIsAnErrorNamingIt) {
   Bytes bad_filter = raw;
   bad_filter[raw.size() - (std::size_t(w) * 4 + 1)] = 7;
   Bytes short_z = test::zlib_compress(raw);
-  short_z.resize(short_z.size() - 30);
+  // erase, not resize: resize's unreachable growth path makes GCC 12 under -fsanitize=address
+  // warn of a memset of 2^64 - 30 bytes (-Wstringop-overflow).
+  short_z.erase(short_z.end() - 30, short_z.end());
   Bytes bad_adler = test::zlib_compress(raw);
   bad_adler.back() ^= 1;
   for (const Bytes& z : {test::zlib_compress(bad_filter), short_z, bad_adler}) {

@@ -7,15 +7,21 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <future>
 #include <glm/gtc/epsilon.hpp>
 #include <regex>
+#include <thread>
 
 #include "compare/image_io.hpp"
+#include "compare/printable.hpp"
 #include "png_fixture.hpp"
+#include "process.hpp"
 #include "renderer/mesh_io.hpp"
+#include "renderer/view_check.hpp"
 
 namespace aosuite::renderer {
 namespace {
@@ -38,6 +44,31 @@ std::string error_of(F&& f) {
   }
   ADD_FAILURE() << "no FileError thrown";
   return {};
+}
+
+// f() run with a deadline: a hang fails the test at once (the process ends, since a thread
+// cannot be stopped) instead of running until CTest's timeout.
+template <typename F>
+void within(std::chrono::seconds limit, F f, const std::string& what) {
+  std::packaged_task<void()> task(std::move(f));
+  std::future<void> done = task.get_future();
+  std::thread(std::move(task)).detach();
+  if (done.wait_for(limit) != std::future_status::ready) {
+    ADD_FAILURE() << what << ": still running after " << limit.count() << " s";
+    std::fflush(stdout);
+    std::_Exit(1);
+  }
+  done.get();
+}
+
+// The message is one line, names `file` first and holds no raw control or non-UTF-8 byte.
+void expect_clean_message(const std::string& e, const fs::path& file) {
+  EXPECT_EQ(e.rfind(file.string() + ":", 0), 0u) << e;
+  EXPECT_EQ(e.find('\n'), std::string::npos) << e;
+  for (const char ch : e) {
+    const auto b = static_cast<unsigned char>(ch);
+    EXPECT_TRUE(b >= 0x20 && b < 0x7F) << "raw byte " << int(b) << " in: " << printable(e);
+  }
 }
 
 std::pair<glm::vec3, glm::vec3> bounds(const Mesh& m) {
@@ -211,6 +242,117 @@ TEST_F(MeshFiles, GarbageEmptyAndOutOfRangeFilesAreRefused) {
   EXPECT_NE(missing.find("nope.ply"), std::string::npos);
 }
 
+TEST_F(MeshFiles, CountsBeyondTheFileAreRefusedAtOnce) {
+  // An element of no properties and 2^64-1 entries once took centuries to walk; every count is
+  // now held against what follows the header (lines for text, bytes for binary) first.
+  const std::string huge = "18446744073709551615";
+  std::string ascii = tetra_ascii_ply();
+  ascii.insert(ascii.find("end_header"), "element junk " + huge + "\n");
+  std::string binary = tetra_binary_ply(false);
+  binary.insert(binary.find("end_header"), "element junk " + huge + "\n");
+  std::string big_list = tetra_binary_ply(true);  // 10^9 faces of 13 bytes in a 100-byte file
+  big_list.replace(big_list.find("element face 4"), 14, "element face 1000000000");
+  std::string ascii_faces = tetra_ascii_ply();
+  ascii_faces.replace(ascii_faces.find("element face 4"), 14, "element face " + huge);
+  for (const auto& [name, text, expected] :
+       std::vector<std::tuple<std::string, std::string, std::string>>{
+           {"junk.ply", ascii, "element 'junk' 1 of " + huge + " is missing"},
+           {"junk_le.ply", binary, "element 'junk' 93 of " + huge + " is missing"},
+           {"faces_be.ply", big_list, "element 'face' 97 of 1000000000 is missing"},
+           {"faces.ply", ascii_faces, "element 'face' 5 of " + huge},
+           {"vertices.off", "OFF\n" + huge + " 1 0\n0 0 0\n3 0 0 0\n", "vertex 3 of " + huge},
+           {"faces.off", "OFF\n3 4000000000 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n",
+            "face 2 of 4000000000 is missing"},
+           {"both.off", "OFF\n" + huge + " " + huge + " 0\n0 0 0\n", "vertex 2 of " + huge}}) {
+    const fs::path p = file(name, text);
+    within(
+        std::chrono::seconds(5),
+        [&] {
+          const std::string e = error_of([&] { load_mesh(p); });
+          expect_clean_message(e, p);
+          EXPECT_NE(e.find("truncated: "), std::string::npos) << e;
+          EXPECT_NE(e.find(expected), std::string::npos) << e;
+        },
+        name);
+  }
+}
+
+TEST_F(MeshFiles, OffVariantsAreReadAsAssimpReadsThem) {
+  // 4OFF divides by w, nOFF gives the dimension (missing coordinates are 0), STOFF, COFF and
+  // NOFF carry more per vertex, and comment lines may sit between header tokens.
+  const std::string faces = "3 0 1 2\n3 0 2 3\n";
+  for (const auto& [name, text] : std::vector<std::pair<std::string, std::string>>{
+           {"a.off", "OFF\n4 2 0\n0 0 0\n2 0 0\n2 2 0\n0 2 0\n" + faces},
+           {"h.off", "4OFF\n4 2 0\n0 0 0 1\n4 0 0 2\n1 1 0 0.5\n0 4 0 2\n" + faces},
+           {"n.off", "nOFF\n2\n4 2 0\n0 0\n2 0\n2 2\n0 2\n" + faces},
+           {"st.off", "STOFF\n4 2 0\n0 0 0 0 0\n2 0 0 1 0\n2 2 0 1 1\n0 2 0 0 1\n" + faces},
+           {"cn.off",
+            "# a comment\nCNOFF # and one here\n4 2 0\n0 0 0 0 0 1 1 0 0\n"
+            "2 0 0 0 0 1 0 1 0\n2 2 0 0 0 1 0 0 1\n0 2 0 0 0 1 1 1 1\n" +
+                faces}}) {
+    const Mesh m = load_mesh(file(name, text));
+    EXPECT_EQ(m.triangles.size(), 2u) << name;
+    const auto [lo, hi] = bounds(m);
+    expect_near(lo, {0, 0, 0});
+    expect_near(hi, {2, 2, 0});
+  }
+}
+
+TEST_F(MeshFiles, OffVariantsWithBadIndicesAreRefusedWithTheLine) {
+  // assimp clamps an out-of-range index to the last vertex of every variant: refused first.
+  std::string ten_vertices;
+  for (int i = 0; i < 10; ++i) ten_vertices += fmt::format("{} {} 0\n", i % 3, i / 3);
+  for (const auto& [name, text, line, expected] :
+       std::vector<std::tuple<std::string, std::string, int, std::string>>{
+           {"bad4.off", "4OFF\n3 1 0\n0 0 0 1\n1 0 0 1\n0 1 0 1\n3 0 1 3\n", 6,
+            "face 1 of 1: vertex index 3 out of range (the file has 3 vertices)"},
+           {"badn.off", "nOFF\n3\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 99\n", 7, "index 99"},
+           {"badst.off", "STOFF\n3 1 0\n0 0 0 0 0\n1 0 0 0 0\n0 1 0 0 0\n3 0 7 1\n", 6, "index 7"},
+           {"badstcn.off", "STCNOFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 4000000000\n", 6,
+            "index 4000000000"},
+           {"negative.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 -1\n", 6, "'-1'"},
+           {"dim4.off", "nOFF\n4\n3 1 0\n", 2, "dimension must be 1, 2 or 3"},
+           {"short.off", "4OFF\n3 1 0\n0 0 0\n1 0 0 1\n0 1 0 1\n3 0 1 2\n", 3,
+            "4 coordinates expected, 3 found"},
+           {"split.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1\n2\n", 6,
+            "has 2 of its 3 vertex indices"},
+           {"ten.off", "OFF\n10 1 0\n" + ten_vertices + "10 0 1 2 3 4 5 6 7 8 9\n", 13,
+            "10 vertices (assimp reads faces of 1 to 9)"},
+           {"comment.off", "OFF\n3 1 0\n0 0 0\n# not skipped by assimp\n1 0 0\n0 1 0\n3 0 1 2\n", 4,
+            "'#' is not a valid vertex 2 of 3"},
+           {"noheader.off", "3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", 1, "not an OFF file"},
+           {"long.off", "OFF\n3 1 0\n0 0 0" + std::string(5000, ' ') + "\n1 0 0\n0 1 0\n3 0 1 2\n",
+            3, "longer than 4095"},
+           {"nul.off", std::string("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\0 junk\n", 42), 6,
+            "NUL byte"}}) {
+    const fs::path p = file(name, text);
+    const std::string e = error_of([&] { load_mesh(p); });
+    expect_clean_message(e, p);
+    EXPECT_EQ(e.rfind(fmt::format("{}:{}: ", p.string(), line), 0), 0u) << name << ": " << e;
+    EXPECT_NE(e.find(expected), std::string::npos) << name << ": " << e;
+  }
+}
+
+TEST_F(MeshFiles, MessagesShowTheFilesBytesEscaped) {
+  // A mutated face line, a PLY header word, a bad binary-ish token: quoted as \xNN, never raw
+  // (an ESC in a message is a terminal escape sequence).
+  const fs::path off = file("esc.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 \x1b[2J\xff\n");
+  const std::string e1 = error_of([&] { load_mesh(off); });
+  expect_clean_message(e1, off);
+  EXPECT_NE(e1.find("\\x1b[2J\\xff"), std::string::npos) << e1;
+  const fs::path ply = file("esc.ply", std::regex_replace(tetra_ascii_ply(), std::regex("float x"),
+                                                          "fl\x1b]0;oat\x07\xc3 x"));
+  const std::string e2 = error_of([&] { load_mesh(ply); });
+  expect_clean_message(e2, ply);
+  EXPECT_NE(e2.find("fl\\x1b]0;oat\\x07\\xc3"), std::string::npos) << e2;
+  const fs::path vert = file("esc2.off",
+                             "OFF\n3 1 0\n0 0 \x9b"
+                             "31m\n1 0 0\n0 1 0\n3 0 1 2\n");
+  const std::string e3 = error_of([&] { load_mesh(vert); });
+  expect_clean_message(e3, vert);
+  EXPECT_NE(e3.find("\\x9b31m"), std::string::npos) << e3;
+}
+
 // The shared real meshes: triangle counts as their PLY headers declare them.
 std::uint64_t declared_faces(const fs::path& ply) {
   std::ifstream in(ply, std::ios::binary);
@@ -349,6 +491,117 @@ TEST_F(SceneFiles, MistakesAreReportedWithTheirLine) {
   EXPECT_NE(error("[[meshes]]\nbox = { min = [0, 0], max = [1, 1, 1] }\n" + std::string(kView), 2)
                 .find("3 numbers"),
             std::string::npos);
+}
+
+TEST_F(SceneFiles, ViewsAreRefusedAsTheRendererRefusesThem) {
+  // near = 1e-300 is positive as a double and 0 as the float the renderer uses: `scenes` once
+  // listed it and `render` refused it. Sizes that round to 0 (or a denormal) are no sizes.
+  const std::string box = "[[meshes]]\nbox = { min = [0, 0, 0], max = [1, 1, 1] }\n";
+  const std::string view = std::string(kView);
+  EXPECT_NE(error(box + view + "near = 1e-300\n", 7).find("near is too small"), std::string::npos);
+  EXPECT_NE(error(box + view + "near = 1e-40\n", 7).find("near is too small"), std::string::npos);
+  EXPECT_NE(error(box + view + "fovy_degrees = 180\n", 7).find("fovy_degrees must be in (0, 180)"),
+            std::string::npos);
+  EXPECT_NE(error(box + view + "fovy_degrees = -1\n", 7).find("fovy_degrees"), std::string::npos);
+  EXPECT_NE(error(box + "[[views]]\nname = \"v\"\neye = [1, 1, 1]\ntarget = [1, 1, 1]\n", 6)
+                .find("eye and target must differ"),
+            std::string::npos);
+  EXPECT_NE(error("[[meshes]]\nsphere = { centre = [0, 0, 0], radius = 1e-50 }\n" + view, 2)
+                .find("sphere.radius is too small"),
+            std::string::npos);
+  EXPECT_NE(error("[[meshes]]\nplane = 1e-46\n" + view, 2).find("plane is too small"),
+            std::string::npos);
+  EXPECT_NE(error(box + "fit = 1e-300\n" + view, 3).find("fit is too small"), std::string::npos);
+  // What loads is what the renderer accepts: the shared check passes every loaded view.
+  const Scene s = load_scene_file(scene(box + view + "near = 1.2e-38\nfovy_degrees = 179.9\n"));
+  EXPECT_FALSE(view_problem(s.views[0]).has_value());
+  View bad = s.views[0];
+  bad.near = 0;
+  ASSERT_TRUE(view_problem(bad).has_value());
+  EXPECT_EQ(view_problem(bad)->field, "near");
+}
+
+TEST_F(SceneFiles, TrianglesAreCappedBeforeGeometryIsMade) {
+  // 200 spheres of 1024 segments are 210 M triangles (about 10 GB) from a 14 KB file: refused
+  // from the scene file alone, naming the file and the mesh that crosses the limit.
+  std::string many;
+  for (int i = 0; i < 200; ++i) {
+    many += fmt::format(
+        "[[meshes]]\nsphere = {{ centre = [{}, 0, 0], radius = 1, segments = 1024 }}\n", 3 * i);
+  }
+  within(
+      std::chrono::seconds(5),
+      [&] {
+        // Sphere 48 (line 95) is the one past 50 M: 48 x 1,048,576 = 50,331,648.
+        const std::string e = error(many + std::string(kView), 95);
+        EXPECT_NE(e.find("50331648 triangles"), std::string::npos) << e;
+        EXPECT_NE(e.find("limit of 50000000"), std::string::npos) << e;
+      },
+      "200 spheres");
+  EXPECT_EQ(kDefaultMaxSceneTriangles, 50'000'000u);
+
+  // AOSUITE_MAX_TRIANGLES replaces the limit; mesh files count once read.
+  write(dir_ / "tetra.ply", tetra_ascii_ply());
+  const char* before = std::getenv("AOSUITE_MAX_TRIANGLES");
+  const std::string saved = before ? before : "";
+  setenv("AOSUITE_MAX_TRIANGLES", "15", 1);
+  const std::string two = "[[meshes]]\nbox = { min = [0, 0, 0], max = [1, 1, 1] }\n";
+  EXPECT_NO_THROW(load_scene_file(scene(two + "[[meshes]]\nplane = 1\n" + std::string(kView))));
+  EXPECT_NE(error(two + two + std::string(kView), 3).find("24 triangles"), std::string::npos);
+  EXPECT_NE(error(two + "[[meshes]]\nfile = \"tetra.ply\"\n" + std::string(kView), 3)
+                .find("16 triangles"),
+            std::string::npos);
+  setenv("AOSUITE_MAX_TRIANGLES", "lots", 1);
+  EXPECT_THROW(max_scene_triangles(), std::invalid_argument);
+  before ? setenv("AOSUITE_MAX_TRIANGLES", saved.c_str(), 1) : unsetenv("AOSUITE_MAX_TRIANGLES");
+}
+
+TEST_F(SceneFiles, MessagesShowTheFilesBytesEscaped) {
+  const std::string e = error(
+      "[[meshes]]\nbox = { min = [0, 0, 0], max = [1, 1, 1] }\n[[views]]\nname = "
+      "\"v\\u001b[31m\"\neye = [0, 1, 5]\ntarget = [0, 0, 0]\n",
+      4);
+  EXPECT_NE(e.find("v\\x1b[31m"), std::string::npos) << e;
+  EXPECT_EQ(e.find('\x1b'), std::string::npos) << printable(e);
+  write(dir_ / "esc.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 \x1b[2J\n");
+  const std::string m = error("[[meshes]]\nfile = \"esc.off\"\n" + std::string(kView), 2);
+  EXPECT_NE(m.find("esc.off:6: '\\x1b[2J'"), std::string::npos) << m;
+}
+
+TEST_F(SceneFiles, TheCommandLineRefusesBadScenesWithExit2AndOneLine) {
+  // `aosuite scenes` and `render --scene` give the same one-line error and exit 2, quickly.
+  std::string ply = tetra_ascii_ply();
+  ply.insert(ply.find("end_header"), "element junk 18446744073709551615\n");
+  write(dir_ / "junk.ply", ply);
+  write(dir_ / "esc.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 \x1b[2J\xff\n");
+  const std::string view = std::string(kView);
+  for (const auto& [name, toml, expected] :
+       std::vector<std::tuple<std::string, std::string, std::string>>{
+           {"junk.toml", "[[meshes]]\nfile = \"junk.ply\"\n" + view, "junk.ply:"},
+           {"esc.toml", "[[meshes]]\nfile = \"esc.off\"\n" + view, "\\x1b[2J\\xff"},
+           {"near.toml", "[[meshes]]\nplane = 1\n" + view + "near = 1e-300\n", "near is too small"},
+           {"big.toml",
+            "[[meshes]]\nsphere = { centre = [0, 0, 0], radius = 1, segments = 1024 }\n" + view,
+            "limit of 1000"}}) {
+    const fs::path p = scene(toml, name);
+    for (const std::string& cmd :
+         {"scenes " + p.string(), "render --width 8 --height 8 --out " + (dir_ / "out").string() +
+                                      " --scene " + p.string()}) {
+      within(
+          std::chrono::seconds(60),
+          [&] {
+            const test::Outcome o = test::run_shell(
+                fmt::format("AOSUITE_MAX_TRIANGLES=1000 {} {}", AOSUITE_BIN, cmd), dir_.path());
+            EXPECT_EQ(o.rc, 2) << cmd << ": " << o.err;
+            EXPECT_EQ(std::count(o.err.begin(), o.err.end(), '\n'), 1) << o.err;
+            EXPECT_NE(o.err.find(p.string()), std::string::npos) << o.err;
+            EXPECT_NE(o.err.find(expected), std::string::npos) << o.err;
+            EXPECT_EQ(o.err.find('\x1b'), std::string::npos) << printable(o.err);
+          },
+          cmd);
+    }
+  }
+  EXPECT_FALSE(fs::exists(dir_ / "out"));
 }
 
 TEST_F(SceneFiles, UnreadableMeshesNameBothFiles) {
