@@ -1,5 +1,6 @@
 // `aosuite compare A B`: Resemble.js 5.0.0's comparison of two PNGs, and `--batch` for many.
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <cctype>
@@ -18,8 +19,10 @@
 #include <vector>
 
 #include "cli/commands.hpp"
+#include "cli/compare_metrics.hpp"
 #include "compare/band_compare.hpp"
 #include "compare/image_io.hpp"
+#include "compare/picture.hpp"
 #include "compare/png_layout.hpp"
 #include "compare/resemble.hpp"
 #include "compare/resemble_json.hpp"
@@ -33,7 +36,8 @@ namespace rs = aosuite::resemble;
 struct CompareArgs {
   std::string a, b, batch, diff, mode = "default", tolerance, error_type = "flat", error_color,
                                  ignore_color, canvas_alpha = "none";
-  std::vector<std::string> bounding_boxes, ignored_boxes;
+  std::vector<std::string> bounding_boxes, ignored_boxes, metrics, gates;
+  std::string heatmap;
   std::string large_image_threshold = "1200", return_early = "0", transparency = "1",
               threshold = "0", memory_limit = "1024";
   bool json = false;
@@ -197,6 +201,14 @@ rs::Result compare_files(const std::string& a, const std::string& b, rs::Options
                          const std::string& diff_path, Budget budget) {
   const MappedFile file_a(a, budget.bytes), file_b(b, budget.bytes);
   const auto bytes_a = file_a.bytes(), bytes_b = file_b.bytes();
+  for (const auto& [name, bytes] : {std::pair{&a, bytes_a}, std::pair{&b, bytes_b}}) {
+    if (is_exr(bytes)) {
+      throw FileError(
+          fmt::format("{}: an EXR image; Resemble.js compares PNGs (for EXR: "
+                      "--metric {})",
+                      *name, metric::names()));
+    }
+  }
   const bool identical = std::ranges::equal(bytes_a, bytes_b);
   if (identical && diff_path.empty()) {
     // Byte-identical files cannot differ: check that the PNG decodes, skip its pixels.
@@ -240,16 +252,26 @@ void print_human(const std::string& a, const std::string& b, const rs::Result& r
   fmt::print(" -> {}\n", pass ? "same" : "different");
 }
 
+// Metrics first: their errors (sizes, kinds) come before Resemble writes its diff image.
 int run_single(const CompareArgs& args) {
+  const MetricPlan plan = plan_metrics(args.metrics, args.gates, args.heatmap);
   const double threshold = number_in(args.threshold, "--threshold", 0, 100);
   const rs::Options options = options_from(args);
-  const rs::Result r = compare_files(args.a, args.b, options, args.diff, budget_from(args));
-  const bool pass = passes(r, threshold);
+  const Budget budget = budget_from(args);
+  RgbaImage heatmap;
+  const MetricRun m =
+      run_metrics(plan, args.a, args.b, budget.bytes, plan.heatmap.empty() ? nullptr : &heatmap);
+  std::optional<rs::Result> r;
+  if (plan.resemble) r = compare_files(args.a, args.b, options, args.diff, budget);
+  if (!plan.heatmap.empty()) write_png_rgba8(plan.heatmap, heatmap);
+  const bool pass = (!r || passes(*r, threshold)) && m.failed.empty();
   if (args.json) {
-    fmt::print("{}\n", rs::result_json(r));
-  } else {
-    print_human(args.a, args.b, r, pass);
+    fmt::print("{}\n", r ? rs::result_json(*r, m.json.empty() ? nullptr : m.json) : m.json.dump());
+    return pass ? kExitSame : kExitDifferent;
   }
+  if (r) print_human(args.a, args.b, *r, passes(*r, threshold));
+  for (const std::string& line : m.lines) fmt::print("{} vs {}: {}\n", args.a, args.b, line);
+  if (!m.failed.empty()) fmt::print("gates: {} -> different\n", fmt::join(m.failed, "; "));
   return pass ? kExitSame : kExitDifferent;
 }
 
@@ -259,6 +281,9 @@ int run_batch(const CompareArgs& args) {
   const double threshold = number_in(args.threshold, "--threshold", 0, 100);
   const rs::Options defaults = options_from(args);
   const Budget budget = budget_from(args);
+  if (!args.heatmap.empty())
+    throw std::invalid_argument("--heatmap writes one file: not with --batch");
+  const MetricPlan plan = plan_metrics(args.metrics, args.gates, "");
   std::ifstream file;
   if (args.batch != "-") {
     file.open(args.batch);
@@ -290,9 +315,13 @@ int run_batch(const CompareArgs& args) {
       }
       if (a.empty() || b.empty()) throw std::invalid_argument("needs both 'a' and 'b'");
       extra["a"] = a, extra["b"] = b;
-      const rs::Result r = compare_files(a, b, o, diff, budget);
-      fmt::print("{}\n", rs::result_json(r, extra));
-      if (!passes(r, threshold)) worst = std::max(worst, kExitDifferent);
+      const MetricRun m = run_metrics(plan, a, b, budget.bytes, nullptr);
+      for (const auto& [key, value] : m.json.items()) extra[key] = value;
+      std::optional<rs::Result> r;
+      if (plan.resemble) r = compare_files(a, b, o, diff, budget);
+      fmt::print("{}\n", r ? rs::result_json(*r, extra) : extra.dump());
+      if ((r && !passes(*r, threshold)) || !m.failed.empty())
+        worst = std::max(worst, kExitDifferent);
     } catch (const std::exception& e) {
       extra["error"] = fmt::format("{}: line {}: {}", args.batch, line_no, e.what());
       fmt::print("{}\n", extra.dump());
@@ -308,8 +337,10 @@ void add_compare_command(CLI::App& app, int& rc) {
   auto args = std::make_shared<CompareArgs>();
   CLI::App* cmd = app.add_subcommand(
       "compare",
-      "Compare two PNGs exactly as Resemble.js 5.0.0 does.\n"
-      "Exit status: 0 same (mismatch <= --threshold and same size), 1 different, 2 error.");
+      "Compare two PNGs exactly as Resemble.js 5.0.0 does, and measure FLIP, SSIM, RMSE or PSNR\n"
+      "on PNG (8- or 16-bit) and EXR images (--metric).\n"
+      "Exit status: 0 same (mismatch <= --threshold and same size, every --gate holds),\n"
+      "1 different, 2 error. Metrics without a --gate are measured, not judged.");
   cmd->add_option("a", args->a, "first image (PNG)");
   cmd->add_option("b", args->b, "second image (PNG)");
   cmd->add_option("--batch", args->batch,
@@ -339,6 +370,12 @@ void add_compare_command(CLI::App& app, int& rc) {
   cmd->add_option("--canvas-alpha", args->canvas_alpha,
                   "what a canvas does to translucent pixels: none|chromium|node-canvas")
       ->capture_default_str();
+  cmd->add_option("--metric", args->metrics,
+                  fmt::format("resemble (the default), {}; repeatable", metric::names()));
+  cmd->add_option("--gate", args->gates,
+                  "METRIC.KEY=VALUE, all must hold: max/min (the metric's main value), "
+                  "max_STAT/min_STAT, allow_nonfinite=true; e.g. flip.max_mean=0.02 (repeatable)");
+  cmd->add_option("--heatmap", args->heatmap, "write FLIP's error map (magma) as PNG");
   cmd->add_option("--diff", args->diff, "write the diff image (Resemble's raw buffer) as PNG");
   cmd->add_option("--threshold", args->threshold, "largest mismatch % still judged the same")
       ->capture_default_str();

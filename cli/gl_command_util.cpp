@@ -7,7 +7,7 @@
 #include <string>
 #include <system_error>
 
-#include "cli/sibling_library.hpp"
+#include "compare/exr_file.hpp"
 #include "compare/image_io.hpp"
 #include "renderer/params.hpp"
 
@@ -55,31 +55,9 @@ rd::RenderSettings case_settings(const CaseOptions& o) {
   return s;
 }
 
-// OpenImageIO lives in libaosuite_exr.so beside this library (cli/exr_writer.cpp), opened
-// on the first EXR: commands that write none skip its ~360 ms of loading.
 void write_exr(const fs::path& path, const cv::Mat& image) {
-  using Write = int(const char*, int, int, const float*, char*, std::size_t);
-  struct Writer {
-    Write* write = nullptr;
-    std::string error;
-  };
-  static const Writer writer = [] {
-    Writer w;
-    w.write = sibling_symbol<Write>("libaosuite_exr.so", "aosuite_write_exr", w.error);
-    return w;
-  }();
-  if (!writer.write) {
-    throw FileError(fmt::format("{}: cannot write EXR: {}", path.string(), writer.error));
-  }
   CV_Assert(image.type() == CV_32FC1 && image.isContinuous());
-  const fs::path tmp = path.parent_path() / fmt::format(".{}.tmp.exr", path.filename().string());
-  char err[512] = {};
-  if (writer.write(tmp.c_str(), image.cols, image.rows, image.ptr<float>(), err, sizeof err) != 0) {
-    std::error_code ignored;
-    fs::remove(tmp, ignored);
-    throw FileError(fmt::format("{}: cannot write EXR: {}", path.string(), err));
-  }
-  fs::rename(tmp, path);
+  aosuite::write_exr(path, image.cols, image.rows, image.ptr<float>());
 }
 
 nlohmann::ordered_json params_json(rd::Technique technique, const rd::AoParams& p) {

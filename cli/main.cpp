@@ -7,8 +7,8 @@
 #include <string>
 
 #include "cli/commands.hpp"
-#include "cli/sibling_library.hpp"
 #include "cli/usage_error.hpp"
+#include "compare/sibling_library.hpp"
 #include "renderer/huge_page_malloc.hpp"
 
 namespace {
@@ -45,7 +45,7 @@ int run_gl_command(int argc, char** argv) {
   aosuite::reexec_with_huge_page_malloc(argv);  // see there: ~20 % off a render process
   std::string error;
   auto* entry =
-      aosuite::cli::sibling_symbol<int(int, char**)>("libaosuite_gl.so", "aosuite_gl_main", error);
+      aosuite::sibling_symbol<int(int, char**)>("libaosuite_gl.so", "aosuite_gl_main", error);
   if (!entry) {
     fmt::print(stderr, "aosuite: cannot load the OpenGL commands: {}\n", error);
     return aosuite::cli::kExitError;

@@ -16,6 +16,7 @@
 #include <memory>
 #include <utility>
 
+#include "compare/picture.hpp"
 #include "compare/png_fast.hpp"
 #include "compare/png_layout.hpp"
 
@@ -263,6 +264,32 @@ RgbaImage decode_png_general(std::span<const unsigned char> png, const std::stri
   spng.check(spng_decode_image(spng.get(), rgba.data(), size, SPNG_FMT_RGBA8, SPNG_DECODE_TRNS),
              "cannot decode");
   return rgba;
+}
+
+FloatImage decode_png16(std::span<const unsigned char> png, const std::string& name) {
+  check_signature(png, name);
+  const PngLayout layout = walk_png(png, name);
+  check_png_stream(layout, name);
+  const SpngDecoder spng(layout, name);
+  std::size_t size = 0;
+  spng.check(spng_decoded_image_size(spng.get(), SPNG_FMT_RGBA16, &size), "cannot decode");
+  std::vector<std::uint16_t> rgba(size / 2);
+  spng.check(spng_decode_image(spng.get(), rgba.data(), size, SPNG_FMT_RGBA16, SPNG_DECODE_TRNS),
+             "cannot decode");
+  // Grey (with or without alpha) stays one channel; alpha is not compared, as for 8-bit images.
+  FloatImage f;
+  f.width = static_cast<int>(layout.width), f.height = static_cast<int>(layout.height);
+  f.channels = (layout.colour_type & 2) ? 3 : 1;
+  f.srgb = true;
+  const std::size_t pixels = std::size_t(f.width) * std::size_t(f.height);
+  f.data.resize(pixels * std::size_t(f.channels));
+  for (std::size_t i = 0; i < pixels; ++i) {
+    for (int c = 0; c < f.channels; ++c) {
+      f.data[i * std::size_t(f.channels) + std::size_t(c)] =
+          float(rgba[i * 4 + std::size_t(c)]) / 65535.0f;
+    }
+  }
+  return f;
 }
 
 RgbaImage decode_png(std::span<const unsigned char> png, const std::string& name) {

@@ -61,6 +61,10 @@ RgbaImage decode_png(std::span<const unsigned char> png, const std::string& name
 // it accepts and refuses exactly the files the fast one does (png_layout.hpp has the rule).
 RgbaImage decode_png_general(std::span<const unsigned char> png, const std::string& name);
 RgbaImage read_png(const std::filesystem::path& path);
+struct FloatImage;
+// A 16-bit PNG kept at 16 bits: R, G, B (or grey alone) as v / 65535, alpha dropped
+// (compare/picture.hpp reads every kind of file).
+FloatImage decode_png16(std::span<const unsigned char> png, const std::string& name);
 // Checks that the PNG decodes, as decode_png would, and returns its size; for the common
 // 8-bit RGB(A) kind it skips unfiltering the pixels nobody will look at.
 ImageSize check_png(std::span<const unsigned char> png, const std::string& name);

@@ -40,18 +40,9 @@ SsimResult compare(const cv::Mat& a, const cv::Mat& b, const Options& options) {
                    options);
   if (a.depth() == CV_32F && (a.channels() == 1 || a.channels() == 3)) {
     const auto n = std::size_t(a.channels());
-    SsimResult r;
-    r.channels = a.channels();
-    double total = 0;
-    for (std::size_t c = 0; c < n; ++c) {
-      const SsimResult one =
-          compare(Plane<float>{a.ptr<float>() + c, a.cols, a.rows, a.step1(), n},
-                  Plane<float>{b.ptr<float>() + c, b.cols, b.rows, b.step1(), n}, options);
-      r.channel_means[c] = one.mean;
-      total += one.mean;
-    }
-    r.mean = total / double(n);
-    return r;
+    return compare_channels(Plane<float>{a.ptr<float>(), a.cols, a.rows, a.step1(), n},
+                            Plane<float>{b.ptr<float>(), b.cols, b.rows, b.step1(), n},
+                            a.channels(), options);
   }
   throw std::invalid_argument("ssim: expected CV_8UC4, CV_8UC1, CV_32FC1 or CV_32FC3 images");
 }

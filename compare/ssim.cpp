@@ -255,6 +255,18 @@ SsimResult compare(Plane<float> a, Plane<float> b, const Options& options) {
   return run({input_of(a, b)}, options);
 }
 
+SsimResult compare_channels(Plane<float> a, Plane<float> b, int channels, const Options& options) {
+  if (channels < 1 || channels > 3) throw std::invalid_argument("ssim: 1 to 3 channels");
+  std::vector<Input> inputs;
+  for (int c = 0; c < channels; ++c) {
+    Plane<float> pa = a, pb = b;
+    if (pa.data) pa.data += c;
+    if (pb.data) pb.data += c;
+    inputs.push_back(input_of(pa, pb));
+  }
+  return run(inputs, options);
+}
+
 void ssim_map(Plane<float> a, Plane<float> b, const Options& options, float* out) {
   const Input in = input_of(a, b);
   check(in, options);

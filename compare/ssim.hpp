@@ -51,6 +51,8 @@ SsimResult compare_rgb(RgbaView a, RgbaView b,
                        const Options& options = {});  // R, G, B; alpha ignored
 SsimResult compare(Plane<std::uint8_t> a, Plane<std::uint8_t> b, const Options& options = {});
 SsimResult compare(Plane<float> a, Plane<float> b, const Options& options);
+// `channels` (1 to 3) interleaved float channels: a and b view channel 0, pixel_stride apart.
+SsimResult compare_channels(Plane<float> a, Plane<float> b, int channels, const Options& options);
 
 // The whole SSIM map of one channel, width * height floats (row-major) into `out`.
 void ssim_map(Plane<float> a, Plane<float> b, const Options& options, float* out);

@@ -8,7 +8,7 @@
 #include <filesystem>
 #include <string>
 
-namespace aosuite::cli {
+namespace aosuite {
 
 // `symbol` of `library` in the executable's directory, as a function of type Fn; nullptr,
 // with dlerror()'s reason (it names the file or the symbol) in `error`, when either is missing.
@@ -22,4 +22,4 @@ Fn* sibling_symbol(const char* library, const char* symbol, std::string& error) 
   return reinterpret_cast<Fn*>(found);
 }
 
-}  // namespace aosuite::cli
+}  // namespace aosuite

@@ -1,0 +1,84 @@
+#include "cli/compare_metrics.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <stdexcept>
+
+#include "compare/image_io.hpp"
+
+namespace aosuite::cli {
+namespace {
+
+metric::Gates& entry(MetricPlan& plan, const metric::Metric& m) {
+  for (metric::Gates& g : plan.metrics)
+    if (g.metric == &m) return g;
+  plan.metrics.push_back({&m, {}, false});
+  return plan.metrics.back();
+}
+
+double gate_value(const std::string& spec, const std::string& text) {
+  char* end = nullptr;
+  errno = 0;
+  const double v = std::strtod(text.c_str(), &end);
+  if (text.empty() || *end != '\0' || errno == ERANGE || !std::isfinite(v)) {
+    if (text == "true") return 1;
+    if (text == "false") return 0;
+    throw std::invalid_argument(
+        fmt::format("--gate '{}': '{}' is not a finite number", spec, text));
+  }
+  return v;
+}
+
+}  // namespace
+
+MetricPlan plan_metrics(const std::vector<std::string>& names,
+                        const std::vector<std::string>& gates, const std::string& heatmap) {
+  MetricPlan plan;
+  // Resemble is the default comparison only when no metric is named in any way.
+  plan.resemble = names.empty() && gates.empty() && heatmap.empty();
+  for (const std::string& n : names) {
+    if (n == "resemble") {
+      plan.resemble = true;
+    } else {
+      entry(plan, metric::find(n));
+    }
+  }
+  for (const std::string& spec : gates) {
+    const std::size_t dot = spec.find('.'), eq = spec.find('=');
+    if (dot == std::string::npos || eq == std::string::npos || eq < dot) {
+      throw std::invalid_argument(fmt::format(
+          "--gate '{}' is not METRIC.KEY=VALUE (e.g. flip.max_mean=0.02, ssim.min=0.98)", spec));
+    }
+    metric::Gates& g = entry(plan, metric::find(spec.substr(0, dot)));
+    metric::add_gate(g, spec.substr(dot + 1, eq - dot - 1), gate_value(spec, spec.substr(eq + 1)));
+  }
+  plan.heatmap = heatmap;
+  if (!heatmap.empty()) entry(plan, metric::find("flip"));
+  return plan;
+}
+
+MetricRun run_metrics(const MetricPlan& plan, const std::string& a, const std::string& b,
+                      std::uint64_t max_bytes, RgbaImage* heatmap) {
+  MetricRun run;
+  if (plan.metrics.empty()) return run;
+  const Picture pa = read_picture(a, max_bytes), pb = read_picture(b, max_bytes);
+  for (const metric::Gates& g : plan.metrics) {
+    const bool map = heatmap && g.metric->name == "flip";
+    metric::Measurement m = metric::measure(*g.metric, pa, pb, {.want_map = map});
+    run.json[std::string(g.metric->name)] = m.json();
+    std::string line = std::string(g.metric->name) + ":";
+    for (const metric::Value& v : m.values) line += fmt::format(" {} {:.6g}", v.key, v.value);
+    if (m.nonfinite) line += fmt::format(" ({} NaN/Inf pixels)", m.nonfinite);
+    run.lines.push_back(line);
+    for (const metric::Outcome& o : metric::judge(g, m))
+      if (!o.pass) run.failed.push_back(o.text());
+    if (map) *heatmap = std::move(m.map);
+  }
+  return run;
+}
+
+}  // namespace aosuite::cli

@@ -1,0 +1,103 @@
+#include "compare/exr_file.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <system_error>
+
+#include "compare/image_io.hpp"
+#include "compare/sibling_library.hpp"
+
+namespace aosuite {
+namespace {
+
+using ReadExr = int(const unsigned char*, std::size_t, float* (*)(void*, int, int, int), void*,
+                    char*, std::size_t);
+using WriteExr = int(const char*, int, int, const float*, char*, std::size_t);
+
+template <class Fn>
+struct Entry {
+  Fn* fn = nullptr;
+  std::string error;
+};
+
+template <class Fn>
+Fn* exr_entry(const char* symbol, const std::string& name, const char* doing) {
+  // One lookup per symbol and process; dlopen shares the library between them.
+  static const Entry<Fn> entry = [symbol] {
+    Entry<Fn> e;
+    e.fn = sibling_symbol<Fn>("libaosuite_exr.so", symbol, e.error);
+    return e;
+  }();
+  if (!entry.fn) throw FileError(fmt::format("{}: cannot {} EXR: {}", name, doing, entry.error));
+  return entry.fn;
+}
+
+// OpenImageIO's messages may span lines; ours are one.
+std::string one_line(std::string text) {
+  std::replace(text.begin(), text.end(), '\n', ' ');
+  // The file OpenImageIO was told of is a stand-in for the bytes in memory.
+  for (std::size_t at; (at = text.find(" \"image.exr\"")) != std::string::npos;) text.erase(at, 12);
+  while (!text.empty() && text.back() == ' ') text.pop_back();
+  return text;
+}
+
+struct Allocation {
+  FloatImage* image;
+  std::uint64_t max_bytes;
+  std::string refused;
+};
+
+float* allocate(void* user, int width, int height, int channels) {
+  auto& a = *static_cast<Allocation*>(user);
+  const std::uint64_t pixels =
+      std::uint64_t(std::max(width, 0)) * std::uint64_t(std::max(height, 0));
+  if (width <= 0 || height <= 0) {
+    a.refused = fmt::format("EXR has an empty data window ({}x{})", width, height);
+    return nullptr;
+  }
+  if (pixels > kMaxImagePixels) {
+    a.refused = fmt::format("{}x{} is over the {}-pixel limit", width, height, kMaxImagePixels);
+    return nullptr;
+  }
+  const std::uint64_t bytes = pixels * std::uint64_t(channels) * sizeof(float);
+  if (bytes > a.max_bytes) {
+    a.refused = fmt::format(
+        "{}x{} with {} channel(s) needs {} MiB decoded, over the {} MiB memory "
+        "budget (--memory-limit MIB)",
+        width, height, channels, (bytes + (1 << 20) - 1) >> 20, a.max_bytes >> 20);
+    return nullptr;
+  }
+  a.image->width = width, a.image->height = height, a.image->channels = channels;
+  a.image->data.assign(pixels * std::uint64_t(channels), 0.0f);
+  return a.image->data.data();
+}
+
+}  // namespace
+
+FloatImage decode_exr(std::span<const unsigned char> bytes, const std::string& name,
+                      std::uint64_t max_bytes) {
+  ReadExr* read = exr_entry<ReadExr>("aosuite_read_exr", name, "read");
+  FloatImage image;
+  Allocation a{&image, max_bytes, {}};
+  char err[512] = {};
+  if (read(bytes.data(), bytes.size(), &allocate, &a, err, sizeof err) != 0) {
+    throw FileError(fmt::format("{}: {}", name, a.refused.empty() ? one_line(err) : a.refused));
+  }
+  return image;
+}
+
+void write_exr(const std::filesystem::path& path, int width, int height, const float* pixels) {
+  WriteExr* write = exr_entry<WriteExr>("aosuite_write_exr", path.string(), "write");
+  const std::filesystem::path tmp =
+      path.parent_path() / fmt::format(".{}.tmp.exr", path.filename().string());
+  char err[512] = {};
+  if (write(tmp.c_str(), width, height, pixels, err, sizeof err) != 0) {
+    std::error_code ignored;
+    std::filesystem::remove(tmp, ignored);
+    throw FileError(fmt::format("{}: cannot write EXR: {}", path.string(), one_line(err)));
+  }
+  std::filesystem::rename(tmp, path);
+}
+
+}  // namespace aosuite

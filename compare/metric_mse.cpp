@@ -1,0 +1,86 @@
+// RMSE and PSNR: the mean squared error over R, G, B (or the one grey channel), on values in
+// [0, 1] for PNGs (v / 255, v / 65535) and as stored for EXR. PSNR is scikit-image's
+// peak_signal_noise_ratio with data_range 1 (+inf for identical images).
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+
+#include "compare/metric.hpp"
+
+namespace aosuite::metric {
+namespace {
+
+struct Errors {
+  double mse = 0, max_abs = 0;
+};
+
+Errors errors(const Picture& reference, const Picture& test) {
+  Errors e;
+  double sum = 0;
+  std::size_t n = 0;
+  if (!reference.is_float) {
+    // Integers: exact sums, one division at the end.
+    std::uint64_t squares = 0;
+    int worst = 0;
+    const RgbaView a = reference.rgba, b = test.rgba;
+    for (int y = 0; y < a.height; ++y) {
+      const unsigned char *pa = a.row(y), *pb = b.row(y);
+      for (int x = 0; x < a.width * 4; ++x) {
+        if ((x & 3) == 3) continue;  // alpha
+        const int d = std::abs(int(pa[x]) - int(pb[x]));
+        squares += std::uint64_t(d * d), worst = std::max(worst, d);
+      }
+    }
+    n = a.bytes() / 4 * 3;
+    e.mse = n ? double(squares) / double(n) / (255.0 * 255.0) : 0;
+    e.max_abs = worst / 255.0;
+    return e;
+  }
+  const std::vector<float>&a = reference.floats.data, &b = test.floats.data;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    const double d = double(a[i]) - double(b[i]);
+    sum += d * d, e.max_abs = std::max(e.max_abs, std::abs(d));
+  }
+  n = a.size();
+  e.mse = n ? sum / double(n) : 0;
+  return e;
+}
+
+constexpr std::string_view kRmseStats[] = {"value", "max_abs"};
+constexpr std::string_view kPsnrStats[] = {"db"};
+
+Measurement measure_rmse(const Picture& reference, const Picture& test, const Request&) {
+  const Errors e = errors(reference, test);
+  Measurement m;
+  m.metric = "rmse", m.values = {{"value", std::sqrt(e.mse)}, {"max_abs", e.max_abs}};
+  return m;
+}
+
+Measurement measure_psnr(const Picture& reference, const Picture& test, const Request&) {
+  const Errors e = errors(reference, test);
+  const double db = e.mse > 0 ? 10.0 * std::log10(1.0 / e.mse) : HUGE_VAL;
+  Measurement m;
+  m.metric = "psnr", m.values = {{"db", db}}, m.facts = {{"data_range", 1.0}};
+  return m;
+}
+
+}  // namespace
+
+extern const Metric kRmse{
+    .name = "rmse",
+    .summary = "root-mean-square error and largest absolute error, values in [0, 1] for PNG",
+    .stats = kRmseStats,
+    .primary = "value",
+    .measure = measure_rmse,
+};
+
+extern const Metric kPsnr{
+    .name = "psnr",
+    .summary = "peak signal-to-noise ratio in dB, data range 1 (null in JSON: identical)",
+    .stats = kPsnrStats,
+    .primary = "db",
+    .measure = measure_psnr,
+};
+
+}  // namespace aosuite::metric

@@ -1,0 +1,16 @@
+// The registered metrics, in the order commands list them. A new metric: its own
+// compare/metric_<name>.cpp defining `extern const Metric k<Name>`, and its name here.
+#include <array>
+
+#include "compare/metric.hpp"
+
+namespace aosuite::metric {
+
+extern const Metric kFlip, kSsim, kRmse, kPsnr;
+
+std::span<const Metric* const> all() {
+  static constexpr std::array<const Metric*, 4> kAll{&kFlip, &kSsim, &kRmse, &kPsnr};
+  return kAll;
+}
+
+}  // namespace aosuite::metric

@@ -1,0 +1,221 @@
+// `aosuite compare --metric` as a user runs it: the differential pairs read back from PNG and
+// EXR files through the command (FLIP and SSIM against the reference tools' numbers), 16-bit
+// PNGs kept at 16 bits, gates and exit codes, and every bad input answered in one line with
+// nothing written.
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "compare/opencv.hpp"
+#include "png_fixture.hpp"
+#include "process.hpp"
+
+namespace aosuite {
+namespace {
+
+namespace fs = std::filesystem;
+using test::Outcome;
+const fs::path kSource = AOSUITE_SOURCE_DIR;
+
+Outcome compare(const test::TempDir& dir, const std::string& args) {
+  return test::run_shell(std::string(AOSUITE_BIN) + " compare " + args, dir.path());
+}
+
+// A float image of `channels` named channels, written with OpenImageIO as EXR.
+void write_exr(const fs::path& path, int w, int h, const std::vector<std::string>& channels,
+               const std::vector<float>& pixels) {
+  OIIO::ImageSpec spec(w, h, int(channels.size()), OIIO::TypeDesc::FLOAT);
+  spec.channelnames = channels;
+  auto out = OIIO::ImageOutput::create(path.string());
+  ASSERT_TRUE(out && out->open(path.string(), spec) &&
+              out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()) && out->close());
+}
+
+void write_png16(const fs::path& path, int w, int h, const std::vector<std::uint16_t>& rgb) {
+  OIIO::ImageSpec spec(w, h, 3, OIIO::TypeDesc::UINT16);
+  auto out = OIIO::ImageOutput::create(path.string());
+  ASSERT_TRUE(out && out->open(path.string(), spec) &&
+              out->write_image(OIIO::TypeDesc::UINT16, rgb.data()) && out->close());
+}
+
+nlohmann::json oracle() {
+  std::ifstream f(kSource / "tests/data/metric_oracle.json");
+  return nlohmann::json::parse(f);
+}
+
+// Every oracle pair the command can be asked about as it stands (ACES for HDR: the tool's
+// default tone mapper), through files and --batch, one process.
+TEST(MetricCli, ReadsThePairsFromFilesAsTheReferenceToolsDo) {
+  test::TempDir dir;
+  const fs::path pairs = dir / "pairs";
+  const Outcome made = test::run_shell(std::string(AOSUITE_ORACLE_INPUTS) + " " + pairs.string() +
+                                           " " + (kSource / "tests/data/metric_renders").string(),
+                                       dir.path());
+  ASSERT_EQ(made.rc, 0) << made.err;
+  std::map<std::string, nlohmann::json> expected;
+  const nlohmann::json doc = oracle();
+  for (const auto& p : doc.at("pairs")) expected[p.at("name").get<std::string>()] = p;
+  std::ifstream manifest_file(pairs / "manifest.json");
+  const auto manifest = nlohmann::json::parse(manifest_file);
+  std::ofstream batch(dir / "batch.jsonl");
+  int ldr = 0, hdr = 0;
+  for (const auto& p : manifest) {
+    const std::string name = p.at("name"), ext = p.at("hdr").get<bool>() ? ".exr" : ".png";
+    if (p.at("hdr").get<bool>() && p.at("tone_mapper") != "aces") continue;
+    (p.at("hdr").get<bool>() ? hdr : ldr) += 1;
+    batch << nlohmann::json{{"id", name},
+                            {"a", (pairs / (name + "_a" + ext)).string()},
+                            {"b", (pairs / (name + "_b" + ext)).string()}}
+                 .dump()
+          << "\n";
+  }
+  batch.close();
+  ASSERT_GE(ldr, 100);
+  ASSERT_GE(hdr, 20);
+  const Outcome r =
+      compare(dir, "--batch " + (dir / "batch.jsonl").string() + " --metric flip --metric ssim");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  std::istringstream lines(r.out);
+  int checked = 0, ssim_checked = 0;
+  for (std::string line; std::getline(lines, line);) {
+    const auto got = nlohmann::json::parse(line);
+    const std::string name = got.at("id");
+    SCOPED_TRACE(name);
+    ASSERT_TRUE(expected.count(name)) << line;
+    ASSERT_FALSE(got.contains("misMatchPercentage")) << "Resemble ran without being asked";
+    const auto& want = expected.at(name).at("flip");
+    const auto& flip = got.at("flip");
+    EXPECT_NEAR(flip.at("mean").get<double>(), want.at("mean").get<double>(), 2e-6);
+    for (const auto& [key, tool_key] :
+         std::map<std::string, std::string>{{"weighted_median", "weighted_median"},
+                                            {"q1", "first_weighted_quartile"},
+                                            {"q3", "third_weighted_quartile"},
+                                            {"min", "min"},
+                                            {"max", "max"}}) {
+      EXPECT_NEAR(flip.at(key).get<double>(), want.at(tool_key).get<double>(), 2e-5) << key;
+    }
+    if (flip.contains("start_exposure")) {
+      EXPECT_NEAR(flip.at("start_exposure").get<double>(), want.at("start_exposure"), 1e-5);
+      EXPECT_NEAR(flip.at("stop_exposure").get<double>(), want.at("stop_exposure"), 1e-5);
+    }
+    if (expected.at(name).contains("ssim_rgb")) {
+      EXPECT_NEAR(got.at("ssim").at("mean").get<double>(),
+                  expected.at(name).at("ssim_rgb").get<double>(), 1e-6);
+      ++ssim_checked;
+    }
+    ++checked;
+  }
+  EXPECT_EQ(checked, ldr + hdr);
+  EXPECT_GE(ssim_checked, 80);
+}
+
+TEST(MetricCli, SixteenBitPngsKeepTheirSixteenBits) {
+  test::TempDir dir;
+  // One step of 1/65535 in every sample: invisible at 8 bits, an RMSE of exactly that at 16.
+  std::vector<std::uint16_t> a(16 * 16 * 3, 30000), b(16 * 16 * 3, 30001);
+  write_png16(dir / "a.png", 16, 16, a);
+  write_png16(dir / "b.png", 16, 16, b);
+  const Outcome r = compare(dir, (dir / "a.png").string() + " " + (dir / "b.png").string() +
+                                     " --metric rmse --metric psnr --json");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_NEAR(j.at("rmse").at("value").get<double>(), 1.0 / 65535, 1e-9);
+  EXPECT_NEAR(j.at("psnr").at("db").get<double>(), 20 * std::log10(65535.0), 1e-3);
+  // Resemble.js sees what a canvas sees: 8 bits, where these are the same.
+  EXPECT_EQ(compare(dir, (dir / "a.png").string() + " " + (dir / "b.png").string()).rc, 0);
+}
+
+TEST(MetricCli, GatesDecideTheExitStatusAndTheHeatmapIsWritten) {
+  test::TempDir dir;
+  cv::Mat a(32, 48, CV_8UC4, cv::Scalar(40, 80, 120, 255)), b = a.clone();
+  b(cv::Rect(8, 8, 10, 10)).setTo(cv::Scalar(200, 80, 120, 255));
+  write_png_rgba8(dir / "a.png", a);
+  write_png_rgba8(dir / "b.png", b);
+  const std::string ab = (dir / "a.png").string() + " " + (dir / "b.png").string();
+  const Outcome measured = compare(dir, ab + " --metric flip --json");
+  ASSERT_EQ(measured.rc, 0) << "no gate: measured, not judged";
+  const double mean = nlohmann::json::parse(measured.out).at("flip").at("mean");
+  ASSERT_GT(mean, 0.001);
+  const std::string within = " --gate flip.max=" + std::to_string(mean * 1.01);
+  EXPECT_EQ(compare(dir, ab + within).rc, 0) << "a gate names its metric: no Resemble";
+  EXPECT_EQ(compare(dir, ab + " --metric resemble" + within).rc, 1) << "Resemble sees the square";
+  const Outcome over =
+      compare(dir, ab + " --metric flip --gate flip.max_mean=" + std::to_string(mean * 0.99) +
+                       " --heatmap " + (dir / "heat.png").string());
+  EXPECT_EQ(over.rc, 1);
+  EXPECT_NE(over.out.find("flip mean"), std::string::npos) << over.out;
+  const cv::Mat heat = read_png_rgba8(dir / "heat.png");
+  ASSERT_EQ(heat.size(), a.size());
+  EXPECT_NE(heat.at<cv::Vec4b>(12, 12), heat.at<cv::Vec4b>(30, 40)) << "the square shows";
+  EXPECT_EQ(compare(dir, ab + " --metric ssim --gate ssim.min=0.5").rc, 0);
+  EXPECT_EQ(compare(dir, ab + " --metric ssim --gate ssim.min=0.9999").rc, 1);
+  // With Resemble too: one object, Resemble's keys first, then one key per metric.
+  const auto both =
+      nlohmann::json::parse(compare(dir, ab + " --metric resemble --metric ssim --json").out);
+  EXPECT_TRUE(both.contains("misMatchPercentage") && both.contains("ssim"));
+}
+
+TEST(MetricCli, NonFiniteFloatsAreCountedAndFailUnlessAllowed) {
+  test::TempDir dir;
+  std::vector<float> a(8 * 8, 0.5f), b = a;
+  b[9] = std::numeric_limits<float>::quiet_NaN();
+  b[20] = std::numeric_limits<float>::infinity();
+  write_exr(dir / "a.exr", 8, 8, {"Y"}, a);
+  write_exr(dir / "b.exr", 8, 8, {"Y"}, b);
+  const std::string ab = (dir / "a.exr").string() + " " + (dir / "b.exr").string();
+  const Outcome r = compare(dir, ab + " --metric rmse --metric ssim --json");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j.at("rmse").at("nonfinite"), 2);
+  EXPECT_NEAR(j.at("rmse").at("value").get<double>(), 0.5 * std::sqrt(2.0 / 64), 1e-7)
+      << "the two bad samples read as 0";
+  EXPECT_TRUE(std::isfinite(j.at("ssim").at("mean").get<double>()));
+  EXPECT_EQ(compare(dir, ab + " --gate rmse.max=1").rc, 1);
+  EXPECT_EQ(compare(dir, ab + " --gate rmse.max=1 --gate rmse.allow_nonfinite=true").rc, 0);
+}
+
+// One line naming the file and the problem, exit 2, nothing written.
+TEST(MetricCli, BadInputIsOneLineAndWritesNothing) {
+  test::TempDir dir;
+  write_png_rgba8(dir / "small.png", cv::Mat(4, 4, CV_8UC4, cv::Scalar::all(9)));
+  write_png_rgba8(dir / "wide.png", cv::Mat(4, 6, CV_8UC4, cv::Scalar::all(9)));
+  write_exr(dir / "grey.exr", 4, 4, {"Y"}, std::vector<float>(16, 0.25f));
+  write_exr(dir / "rgb.exr", 4, 4, {"R", "G", "B"}, std::vector<float>(48, 0.25f));
+  write_exr(dir / "depth.exr", 4, 4, {"Z"}, std::vector<float>(16, 1.0f));
+  std::ofstream(dir / "cut.exr") << std::string("\x76\x2f\x31\x01", 4) << "garbage";
+  const fs::path heat = dir / "heat.png";
+  auto p = [&](const char* name) { return (dir / name).string(); };
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {p("small.png") + " " + p("wide.png") + " --metric flip", "wide.png: 6x4, but"},
+      {p("grey.exr") + " " + p("rgb.exr") + " --metric rmse", "EXR, 3 channels, but"},
+      {p("grey.exr") + " " + p("small.png") + " --metric ssim", "8-bit RGBA, but"},
+      {p("depth.exr") + " " + p("grey.exr") + " --metric rmse",
+       "depth.exr: EXR has no R, G, B or Y channel (it has: Z)"},
+      {p("cut.exr") + " " + p("grey.exr") + " --metric rmse", "cut.exr: "},
+      {p("grey.exr") + " " + p("grey.exr") + " --metric resemble",
+       "grey.exr: an EXR image; Resemble.js compares PNGs"},
+      {p("small.png") + " " + p("small.png") + " --metric nope", "unknown metric 'nope'"},
+      {p("small.png") + " " + p("small.png") + " --gate flip.max_nope=1", "flip has no gate"},
+      {p("small.png") + " " + p("small.png") + " --gate flip.max=inf", "not a finite number"},
+      {p("small.png") + " " + p("small.png") + " --gate flip", "is not METRIC.KEY=VALUE"},
+  };
+  for (const auto& [args, message] : cases) {
+    SCOPED_TRACE(args);
+    const Outcome r = compare(dir, args + " --heatmap " + heat.string());
+    EXPECT_EQ(r.rc, 2);
+    EXPECT_NE(r.err.find(message), std::string::npos) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_FALSE(fs::exists(heat));
+  }
+}
+
+}  // namespace
+}  // namespace aosuite
