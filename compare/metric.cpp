@@ -134,4 +134,62 @@ std::vector<Outcome> judge(const Gates& gates, const Measurement& m) {
   return out;
 }
 
+namespace {
+
+nlohmann::json number_or_null(double v) {
+  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
+}
+
+// null is the infinity a finite-only format could not hold: +inf for a value, as PSNR's.
+double number_from(const nlohmann::json& j, double infinity = HUGE_VAL) {
+  return j.is_null() ? infinity : j.get<double>();
+}
+
+}  // namespace
+
+nlohmann::json to_json(const Outcome& o) {
+  return {{"metric", o.metric}, {"stat", o.stat},           {"value", number_or_null(o.value)},
+          {"limit", o.limit},   {"bound", o.is_max ? "max" : "min"},
+          {"margin", number_or_null(o.margin)}, {"pass", o.pass}};
+}
+
+Outcome outcome_from_json(const nlohmann::json& j) {
+  Outcome o;
+  o.metric = j.at("metric"), o.stat = j.at("stat");
+  o.value = number_from(j.at("value")), o.limit = j.at("limit");
+  o.is_max = j.at("bound") == "max";
+  o.margin = number_from(j.at("margin"), o.is_max ? -HUGE_VAL : HUGE_VAL);
+  o.pass = j.at("pass");
+  return o;
+}
+
+Measurement measurement_from_json(const Metric& m, const nlohmann::json& j) {
+  Measurement out;
+  out.metric = std::string(m.name);
+  for (const auto& [key, value] : j.items()) {
+    if (key == "nonfinite") {
+      out.nonfinite = value;
+    } else if (std::find(m.stats.begin(), m.stats.end(), key) != m.stats.end()) {
+      out.values.push_back({key, number_from(value)});
+    } else {
+      out.facts.push_back({key, value.get<double>()});
+    }
+  }
+  return out;
+}
+
+nlohmann::json to_json(const Gates& g) {
+  nlohmann::json j = nlohmann::json::object();
+  for (const Limit& l : g.limits) j[(l.is_max ? "max_" : "min_") + l.stat] = l.limit;
+  if (g.allow_nonfinite) j["allow_nonfinite"] = true;
+  return j;
+}
+
+Gates gates_from_json(const Metric& m, const nlohmann::json& j) {
+  Gates g{&m, {}, false};
+  for (const auto& [key, value] : j.items())
+    add_gate(g, key, value.is_boolean() ? double(value.get<bool>()) : value.get<double>());
+  return g;
+}
+
 }  // namespace aosuite::metric

@@ -88,4 +88,12 @@ struct Outcome {
 };
 std::vector<Outcome> judge(const Gates& gates, const Measurement& m);
 
+// As results.json keeps them (infinities as null), and back. Throw nlohmann::json's errors, or
+// std::invalid_argument for an unknown metric or gate.
+nlohmann::json to_json(const Outcome& o);
+Outcome outcome_from_json(const nlohmann::json& j);
+Measurement measurement_from_json(const Metric& m, const nlohmann::json& j);
+nlohmann::json to_json(const Gates& g);  // {"max_mean": 0.02, ...}
+Gates gates_from_json(const Metric& m, const nlohmann::json& j);
+
 }  // namespace aosuite::metric

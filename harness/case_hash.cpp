@@ -69,7 +69,11 @@ std::string judge_hash(const Case& c, const std::string& input,
   Hasher h;
   h.add(input);
   const Tolerance& t = c.tolerance;
-  h.add(t.mode).add(t.max_mismatch_percent).add(t.max_channel_delta);
+  h.add(t.resemble).add(t.mode).add(t.max_mismatch_percent).add(t.max_channel_delta);
+  for (const metric::Gates& g : t.gates) {
+    h.add(std::string(g.metric->name)).add(g.allow_nonfinite).add(g.limits.size());
+    for (const metric::Limit& l : g.limits) h.add(l.stat).add(l.is_max).add(l.limit);
+  }
   for (const resemble::Box& b : t.ignore) h.add(b.left).add(b.top).add(b.right).add(b.bottom);
   if (!t.mask.empty()) h.add_file(t.mask);
   for (std::size_t i = 0; i < goldens.size(); ++i) {

@@ -36,9 +36,9 @@ std::string platform_key(std::string_view description) {
 
 namespace {
 
-// <image>.png first, then its variants <image>~<tag>.png in name order. A missing folder holds
-// none; one that exists and cannot be listed is an error, not "no golden yet".
-std::vector<fs::path> goldens_in(const fs::path& dir, std::string_view image,
+// <image><ext> first, then its variants <image>~<tag><ext> in name order. A missing folder
+// holds none; one that exists and cannot be listed is an error, not "no golden yet".
+std::vector<fs::path> goldens_in(const fs::path& dir, std::string_view image, std::string_view ext,
                                  bool variants_only = false) {
   std::vector<fs::path> out;
   std::error_code ec;
@@ -51,8 +51,8 @@ std::vector<fs::path> goldens_in(const fs::path& dir, std::string_view image,
   if (ec) fail();
   for (; it != fs::directory_iterator(); it.increment(ec)) {
     const std::string name = it->path().filename().string();
-    const bool primary = !variants_only && name == std::string(image) + ".png";
-    const bool variant = name.starts_with(std::string(image) + "~") && name.ends_with(".png");
+    const bool primary = !variants_only && name == std::string(image) + std::string(ext);
+    const bool variant = name.starts_with(std::string(image) + "~") && name.ends_with(ext);
     if (primary || variant) out.push_back(it->path());
   }
   if (ec) fail();
@@ -124,10 +124,10 @@ bool legacy_temporary(const std::string& name) {
 }  // namespace
 
 std::vector<fs::path> accepted_goldens(const fs::path& case_dir, std::string_view image,
-                                       std::string_view platform) {
-  std::vector<fs::path> generic = goldens_in(case_dir, image);
+                                       std::string_view ext, std::string_view platform) {
+  std::vector<fs::path> generic = goldens_in(case_dir, image, ext);
   if (platform.empty()) return generic;
-  std::vector<fs::path> out = goldens_in(case_dir / platform, image);
+  std::vector<fs::path> out = goldens_in(case_dir / platform, image, ext);
   if (out.empty()) return generic;
   for (const fs::path& g : generic) {
     if (g.filename().string().find('~') != std::string::npos) out.push_back(g);
@@ -135,9 +135,9 @@ std::vector<fs::path> accepted_goldens(const fs::path& case_dir, std::string_vie
   return out;
 }
 
-fs::path golden_path(const fs::path& case_dir, std::string_view image, std::string_view platform,
-                     std::string_view tag) {
-  const std::string name = fmt::format("{}{}{}.png", image, tag.empty() ? "" : "~", tag);
+fs::path golden_path(const fs::path& case_dir, std::string_view image, std::string_view ext,
+                     std::string_view platform, std::string_view tag) {
+  const std::string name = fmt::format("{}{}{}{}", image, tag.empty() ? "" : "~", tag, ext);
   return platform.empty() ? case_dir / name : case_dir / platform / name;
 }
 

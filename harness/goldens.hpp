@@ -1,5 +1,6 @@
 // Where goldens live and how they are replaced. A case's folder is <goldens>/<case id>/; in it
-// <image>.png is the accepted golden and <image>~<tag>.png are further accepted variants. A
+// <image>.png (or .exr, for float images) is the accepted golden and <image>~<tag>.png are
+// further accepted variants. A
 // sub-folder named by a platform key (the GL renderer, e.g. llvmpipe-llvm-15-0-6-256-bits)
 // holds goldens for that platform only: when it has any for an image, its ones replace the
 // generic <image>.png there (drivers that rasterise differently get their own goldens) and the
@@ -23,14 +24,16 @@ std::string platform_key(std::string_view gl_description);
 // The goldens accepted for `image` of a case, platform-specific ones first; empty if none.
 // Throws std::runtime_error naming the folder when the case's folder (or its platform folder)
 // exists but cannot be listed: not a folder, no permission.
+// `ext` is the image's file type (".png", ".exr").
 std::vector<std::filesystem::path> accepted_goldens(const std::filesystem::path& case_dir,
-                                                    std::string_view image,
+                                                    std::string_view image, std::string_view ext,
                                                     std::string_view platform);
 
 // Where `bless` writes: the generic golden, or the platform's when `platform` is not empty,
 // as variant `tag` when not empty.
 std::filesystem::path golden_path(const std::filesystem::path& case_dir, std::string_view image,
-                                  std::string_view platform, std::string_view tag);
+                                  std::string_view ext, std::string_view platform,
+                                  std::string_view tag);
 
 // Replaces (or creates) a case's goldens all or nothing: every file is first written and
 // synced beside its target under a temporary dot-name (.<name>.bless-<pid>-XXXXXX), and only

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "compare/opencv.hpp"
+#include "compare/picture.hpp"
 
 namespace aosuite::harness {
 
@@ -82,40 +83,80 @@ resemble::Options resemble_options(const Tolerance& t, bool diff) {
   return o;
 }
 
+// The metric gates of one golden against the render: every measurement and outcome.
+void measure_gates(const Picture& golden, const Picture& render, const Tolerance& t, bool want_map,
+                   ImageVerdict& v) {
+  for (const metric::Gates& g : t.gates) {
+    const bool map = want_map && g.metric->name == "flip";
+    metric::Measurement m = metric::measure(*g.metric, golden, render, {.want_map = map});
+    for (metric::Outcome& o : metric::judge(g, m)) v.outcomes.push_back(std::move(o));
+    if (map) v.heatmap = std::move(m.map);
+    m.map = {};
+    v.measured.push_back(std::move(m));
+  }
+}
+
+std::string failed_gates(const ImageVerdict& v) {
+  std::string out;
+  for (const metric::Outcome& o : v.outcomes)
+    if (!o.pass) out += (out.empty() ? "" : ", ") + o.text();
+  return out;
+}
+
+// Resemble's gate on an 8-bit image; true when it holds (or the tolerance does not ask for it).
+bool resemble_gate(const cv::Mat& golden, const cv::Mat& render, const Tolerance& t,
+                   ImageVerdict& v) {
+  const cv::Mat judged = without_ignored(render, golden, t);
+  const resemble::Result r = resemble::compare(golden, judged, resemble_options(t, false));
+  v.mismatch_percent = r.raw_mismatch_percentage;
+  v.mismatch_text = r.mismatch_percentage;
+  v.max_channel_delta = max_channel_delta(golden, judged);
+  const bool within =
+      v.mismatch_percent <= t.max_mismatch_percent && v.max_channel_delta <= t.max_channel_delta;
+  if (!t.resemble || within) return true;
+  v.message = fmt::format("mismatch {}% (allowed {}%)", v.mismatch_text, t.max_mismatch_percent);
+  if (t.max_channel_delta < 255) {
+    v.message += fmt::format(", max channel delta {} (allowed {})", v.max_channel_delta,
+                             t.max_channel_delta);
+  }
+  return false;
+}
+
 // One golden against the render; kError when the golden cannot be read.
-ImageVerdict against(std::string_view image, std::span<const unsigned char> render_png,
-                     const cv::Mat& render, const fs::path& golden_file, const Tolerance& t) {
+ImageVerdict against(std::string_view image, std::span<const unsigned char> render_bytes,
+                     const cv::Mat& render, const fs::path& golden_file, const Tolerance& t,
+                     bool want_map) {
   ImageVerdict v;
   v.image = std::string(image), v.golden = golden_file;
   try {
     const std::vector<unsigned char> bytes = read_file(golden_file);
-    if (std::equal(bytes.begin(), bytes.end(), render_png.begin(), render_png.end())) {
+    if (std::equal(bytes.begin(), bytes.end(), render_bytes.begin(), render_bytes.end())) {
       v.status = Status::kPass, v.identical = true, v.mismatch_text = "0.00";
       return v;
     }
-    const cv::Mat golden = decode_png_rgba8(bytes, golden_file.string());
-    if (golden.size() != render.size()) {
+    const bool is_float = render.empty();
+    if (is_float && t.gates.empty()) {
       v.status = Status::kFail, v.mismatch_percent = 100, v.mismatch_text = "100.00";
-      v.message = fmt::format("golden is {}x{}, render is {}x{}", golden.cols, golden.rows,
-                              render.cols, render.rows);
+      v.message = "the EXR files differ (without a metric gate, EXR images are compared byte for byte)";
       return v;
     }
-    const cv::Mat judged = without_ignored(render, golden, t);
-    const resemble::Result r = resemble::compare(golden, judged, resemble_options(t, false));
-    v.mismatch_percent = r.raw_mismatch_percentage;
-    v.mismatch_text = r.mismatch_percentage;
-    v.max_channel_delta = max_channel_delta(golden, judged);
-    const bool within =
-        v.mismatch_percent <= t.max_mismatch_percent && v.max_channel_delta <= t.max_channel_delta;
-    v.status = within ? Status::kPass : Status::kFail;
-    if (!within) {
-      v.message =
-          fmt::format("mismatch {}% (allowed {}%)", v.mismatch_text, t.max_mismatch_percent);
-      if (t.max_channel_delta < 255) {
-        v.message += fmt::format(", max channel delta {} (allowed {})", v.max_channel_delta,
-                                 t.max_channel_delta);
-      }
+    const Picture golden = decode_picture(bytes, golden_file.string());
+    const Picture rendered = decode_picture(render_bytes, "the render");
+    const ImageSize gs = golden.size(), rs = rendered.size();
+    if (gs.width != rs.width || gs.height != rs.height || golden.kind() != rendered.kind()) {
+      v.status = Status::kFail, v.mismatch_percent = 100, v.mismatch_text = "100.00";
+      const bool kinds = golden.kind() != rendered.kind();
+      v.message = fmt::format("golden is {}x{}{}, render is {}x{}{}", gs.width, gs.height,
+                              kinds ? " " + golden.kind() : "", rs.width, rs.height,
+                              kinds ? " " + rendered.kind() : "");
+      return v;
     }
+    bool pass = true;
+    if (!is_float) pass = resemble_gate(decode_png_rgba8(bytes, golden_file.string()), render, t, v);
+    measure_gates(golden, rendered, t, want_map, v);
+    const std::string failed = failed_gates(v);
+    if (!failed.empty()) v.message += (v.message.empty() ? "" : "; ") + failed;
+    v.status = pass && failed.empty() ? Status::kPass : Status::kFail;
   } catch (const std::exception& e) {
     v.status = Status::kError;
     v.message = e.what();
@@ -123,9 +164,18 @@ ImageVerdict against(std::string_view image, std::span<const unsigned char> rend
   return v;
 }
 
+// How far from passing: gates failed first, then Resemble's mismatch.
+bool closer(const ImageVerdict& a, const ImageVerdict& b) {
+  const auto failed = [](const ImageVerdict& v) {
+    return std::ranges::count_if(v.outcomes, [](const metric::Outcome& o) { return !o.pass; });
+  };
+  if (failed(a) != failed(b)) return failed(a) < failed(b);
+  return a.mismatch_percent < b.mismatch_percent;
+}
+
 }  // namespace
 
-ImageVerdict judge(std::string_view image, std::span<const unsigned char> render_png,
+ImageVerdict judge(std::string_view image, std::span<const unsigned char> render_bytes,
                    const cv::Mat& render, const std::vector<fs::path>& goldens,
                    const Tolerance& tolerance, bool want_diff) {
   if (goldens.empty()) {
@@ -137,18 +187,19 @@ ImageVerdict judge(std::string_view image, std::span<const unsigned char> render
   // error to repair, not something another variant may hide.
   std::vector<ImageVerdict> tried;
   for (const fs::path& g : goldens)
-    tried.push_back(against(image, render_png, render, g, tolerance));
+    tried.push_back(against(image, render_bytes, render, g, tolerance, want_diff));
   for (const ImageVerdict& v : tried) {
     if (v.status == Status::kError) return v;
   }
-  for (const ImageVerdict& v : tried) {
-    if (v.status == Status::kPass) return v;
+  for (ImageVerdict& v : tried) {
+    if (v.status == Status::kPass) {
+      v.heatmap = {};  // maps are for failures
+      return v;
+    }
   }
   // None passed: report the closest golden.
-  ImageVerdict best = *std::min_element(tried.begin(), tried.end(), [](auto& a, auto& b) {
-    return a.mismatch_percent < b.mismatch_percent;
-  });
-  if (want_diff && best.status == Status::kFail && best.mismatch_percent < 100) {
+  ImageVerdict best = *std::min_element(tried.begin(), tried.end(), closer);
+  if (want_diff && best.status == Status::kFail && best.mismatch_percent < 100 && !render.empty()) {
     const cv::Mat golden = read_png_rgba8(best.golden);
     best.diff = resemble::compare(golden, without_ignored(render, golden, tolerance),
                                   resemble_options(tolerance, true))

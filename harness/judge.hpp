@@ -18,7 +18,7 @@ std::string_view status_name(Status s);  // PASS FAIL NEW ERROR FLAKY
 Status parse_status(std::string_view name);
 
 struct ImageVerdict {
-  std::string image;  // no_ao | with_ao | ao_only
+  std::string image;  // no_ao | with_ao | ao_only | ao_float, or an image case's own
   Status status = Status::kError;
   bool identical = false;        // byte-identical to the golden: nothing was compared
   double mismatch_percent = 0;   // Resemble's rawMisMatchPercentage against `golden`
@@ -27,13 +27,19 @@ struct ImageVerdict {
   std::filesystem::path golden;  // the accepted golden closest to the render
   std::string message;           // why it failed or could not be judged
   RgbaImage diff;                // Resemble's diff image, when asked and not passing
+  // The tolerance's metric gates: every gated metric's values, and each gate's outcome (value,
+  // limit, margin). Empty for identical images: nothing was measured.
+  std::vector<metric::Measurement> measured;
+  std::vector<metric::Outcome> outcomes;
+  RgbaImage heatmap;  // FLIP's error map, when FLIP is gated, asked for and not passing
 };
 
-// Judges `render` (the PNG bytes and their decoded RGBA) against `goldens` (accepted variants;
-// the case passes if any does). Missing goldens give kNew; an unreadable golden or variant
-// gives kError naming it, even when another variant passes; a golden of another size kFail
-// with both sizes named.
-ImageVerdict judge(std::string_view image, std::span<const unsigned char> render_png,
+// Judges a render (its file's bytes, and for PNGs their decoded RGBA; `render` is empty for
+// float images) against `goldens` (accepted variants; the case passes if any does) under
+// Resemble's gate and the metric gates. Missing goldens give kNew; an unreadable golden or
+// variant gives kError naming it, even when another variant passes; a golden of another size
+// or kind kFail with both named. A float image without metric gates is compared byte for byte.
+ImageVerdict judge(std::string_view image, std::span<const unsigned char> render_bytes,
                    const cv::Mat& render, const std::vector<std::filesystem::path>& goldens,
                    const Tolerance& tolerance, bool want_diff);
 

@@ -21,7 +21,12 @@ using nlohmann::json;
 namespace {
 
 json to_json(const ImageVerdict& v) {
+  json metrics = json::object(), gates = json::array();
+  for (const metric::Measurement& m : v.measured) metrics[m.metric] = m.json();
+  for (const metric::Outcome& o : v.outcomes) gates.push_back(metric::to_json(o));
   return {{"image", v.image},
+          {"metrics", metrics},
+          {"gates", gates},
           {"status", status_name(v.status)},
           {"identical", v.identical},
           {"mismatch_percent", v.mismatch_percent},
@@ -41,6 +46,10 @@ ImageVerdict verdict_from_json(const json& j) {
   v.max_channel_delta = j.at("max_channel_delta");
   v.golden = j.at("golden").get<std::string>();
   v.message = j.at("message");
+  const json metrics = j.value("metrics", json::object()), gates = j.value("gates", json::array());
+  for (const auto& [name, m] : metrics.items())
+    v.measured.push_back(metric::measurement_from_json(metric::find(name), m));
+  for (const json& o : gates) v.outcomes.push_back(metric::outcome_from_json(o));
   return v;
 }
 
@@ -54,6 +63,8 @@ json to_json(const CaseResult& c) {
   }
   for (const resemble::Box& b : c.tolerance.ignore)
     ignore.push_back({b.left, b.top, b.right, b.bottom});
+  json gates = json::object();
+  for (const metric::Gates& g : c.tolerance.gates) gates[std::string(g.metric->name)] = to_json(g);
   json params = json::object();
   for (const auto& [k, v] : c.params)
     params[k] = v.is_string() ? json(printable(v.get<std::string>())) : v;
@@ -70,7 +81,9 @@ json to_json(const CaseResult& c) {
           {"height", c.height},
           {"params", params},
           {"tolerance",
-           {{"mode", resemble::mode_name(c.tolerance.mode)},
+           {{"resemble", c.tolerance.resemble},
+            {"gates", gates},
+            {"mode", resemble::mode_name(c.tolerance.mode)},
             {"max_mismatch_percent", c.tolerance.max_mismatch_percent},
             {"max_channel_delta", c.tolerance.max_channel_delta},
             {"ignore", ignore},
@@ -108,6 +121,10 @@ CaseResult case_from_json(const json& j) {
   c.tolerance.max_channel_delta = t.at("max_channel_delta");
   for (const json& b : t.at("ignore")) c.tolerance.ignore.push_back({b[0], b[1], b[2], b[3]});
   c.tolerance.mask = t.at("mask").get<std::string>();
+  c.tolerance.resemble = t.value("resemble", true);
+  const json gates = t.value("gates", json::object());
+  for (const auto& [name, g] : gates.items())
+    c.tolerance.gates.push_back(metric::gates_from_json(metric::find(name), g));
   c.status = parse_status(j.at("status").get<std::string>());
   c.message = j.at("message");
   for (const json& v : j.at("images")) c.images.push_back(verdict_from_json(v));

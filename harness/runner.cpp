@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "compare/exr_file.hpp"
 #include "compare/image_io.hpp"
 #include "compare/opencv.hpp"
 #include "harness/case_hash.hpp"
@@ -160,13 +161,21 @@ double raw_mismatch(const cv::Mat& a, const cv::Mat& b, resemble::Mode mode) {
   return resemble::compare(a, b, o).raw_mismatch_percentage;
 }
 
-// The file type of a case's images: ".png", or folder mode's ".exr".
-std::string ext_of(const Case& c) { return c.source ? c.source->ext : std::string(".png"); }
+// The file type of a case's image: an image case's own (".png", folder mode's ".exr"), else
+// the render's (ao_float is EXR).
+std::string ext_of(const Case& c, std::string_view image) {
+  return c.source ? c.source->ext : render_ext(image);
+}
 
-// The images a case keeps in its report folder: the three renders, or an image case's own.
+bool gates_ao_float(const Case& c) { return std::ranges::count(c.images, "ao_float") > 0; }
+
+// The images a case keeps in its report folder: the three PNG renders (and the float AO term
+// when it is gated), or an image case's own.
 std::vector<std::string> kept_images(const Case& c) {
   if (c.source) return c.images;
-  return {kImageNames.begin(), kImageNames.end()};
+  std::vector<std::string> out{"no_ao", "with_ao", "ao_only"};
+  if (gates_ao_float(c)) out.push_back("ao_float");
+  return out;
 }
 
 // Renders the case into `r`, writing its images to `case_dir`; fills times and the AO effect.
@@ -174,13 +183,18 @@ void render_case(rd::Renderer& renderer, const Case& c, const fs::path& case_dir
                  Rendered& out) {
   rd::RenderSettings s;
   s.width = c.width, s.height = c.height, s.technique = c.technique, s.params = c.params;
-  s.outputs = {.no_ao = true, .with_ao = true, .ao_only = true, .ao_float = false};
+  s.outputs = {.no_ao = true, .with_ao = true, .ao_only = true, .ao_float = gates_ao_float(c)};
   rd::Images img = renderer.render(*c.scene, rd::find_view(*c.scene, c.view), s);
   out.rgba = {{"no_ao", img.no_ao}, {"with_ao", img.with_ao}, {"ao_only", img.ao_only}};
   fs::create_directories(case_dir);
   for (const auto& [name, mat] : out.rgba) {
     out.png[name] = encode_png_rgba8(mat, 6);
     keep_in_report(case_dir / (name + ".png"), out.png[name]);
+  }
+  if (s.outputs.ao_float) {
+    const fs::path exr = case_dir / "ao_float.exr";
+    write_exr(exr, img.ao.cols, img.ao.rows, img.ao.ptr<float>());
+    out.png["ao_float"] = read_file(exr);
   }
   r.times = img.times;
   r.ao_effect_less = raw_mismatch(img.no_ao, img.with_ao, resemble::Mode::kLess);
@@ -252,10 +266,10 @@ void produce_images(const Case& c, const fs::path& case_dir, CaseResult& r, Rend
 bool reuse_render(const Case& c, const CaseResult& prev, const fs::path& case_dir, CaseResult& r,
                   Rendered& out) {
   for (const std::string& name : kept_images(c)) {
-    if (!fs::is_regular_file(case_dir / (name + ext_of(c)))) return false;
+    if (!fs::is_regular_file(case_dir / (name + ext_of(c, name)))) return false;
   }
   for (const std::string& name : kept_images(c)) {
-    out.png[name] = read_file(case_dir / (name + ext_of(c)));
+    out.png[name] = read_file(case_dir / (name + ext_of(c, name)));
   }
   r.times = prev.times;
   r.ao_effect_less = prev.ao_effect_less, r.ao_effect_nothing = prev.ao_effect_nothing;
@@ -315,9 +329,8 @@ CaseResult skeleton(const Case& c) {
     if (rd::applies(spec, c.technique))
       r.params[std::string(spec.key)] = typed(rd::param_value(spec, c.params));
   }
-  r.files = {{"no_ao", c.id + "/no_ao.png"},
-             {"with_ao", c.id + "/with_ao.png"},
-             {"ao_only", c.id + "/ao_only.png"}};
+  for (const std::string& image : kept_images(c))
+    r.files[image] = c.id + "/" + image + ext_of(c, image);
   return r;
 }
 
@@ -349,30 +362,7 @@ std::vector<fs::path> goldens_of(const Suite& suite, const Case& c, const std::s
     if (fs::exists(fs::symlink_status(c.source->golden_file, ec))) return {c.source->golden_file};
     return {};
   }
-  return accepted_goldens(suite.goldens / c.id, image, platform);
-}
-
-// An image no decoder here reads (folder mode's EXR): identical bytes pass, others fail.
-ImageVerdict judge_bytes(const std::string& image, const std::vector<unsigned char>& bytes,
-                         const std::vector<fs::path>& goldens) {
-  ImageVerdict v;
-  v.image = image;
-  if (goldens.empty()) {
-    v.status = Status::kNew, v.message = "no golden yet";
-    return v;
-  }
-  v.golden = goldens.front();
-  try {
-    v.identical = read_file(v.golden) == bytes;
-  } catch (const std::exception& e) {
-    v.status = Status::kError, v.message = e.what();
-    return v;
-  }
-  v.status = v.identical ? Status::kPass : Status::kFail;
-  v.mismatch_percent = v.identical ? 0 : 100;
-  v.mismatch_text = v.identical ? "0.00" : "100.00";
-  if (!v.identical) v.message = "the EXR files differ (EXR images are compared byte for byte)";
-  return v;
+  return accepted_goldens(suite.goldens / c.id, image, ext_of(c, image), platform);
 }
 
 void judge_case(const Suite& suite, const Case& c, const std::string& platform, const RunOptions& o,
@@ -392,26 +382,30 @@ void judge_case(const Suite& suite, const Case& c, const std::string& platform, 
   r.status = Status::kPass;
   for (std::size_t i = 0; i < c.images.size(); ++i) {
     const std::string& name = c.images[i];
-    ImageVerdict v = ext_of(c) == ".png"
-                         ? judge(name, images.png.at(name), pixels(images, name, case_dir),
-                                 goldens[i], c.tolerance, true)
-                         : judge_bytes(name, images.png.at(name), goldens[i]);
+    const std::string ext = ext_of(c, name);
+    ImageVerdict v = judge(name, images.png.at(name),
+                           ext == ".png" ? pixels(images, name, case_dir) : cv::Mat(), goldens[i],
+                           c.tolerance, true);
     const bool show = v.status == Status::kFail || o.diff_all;
     if (!v.diff.empty() && show) {
       write_png_rgba8(case_dir / ("diff_" + name + ".png"), v.diff);
       r.files["diff:" + name] = c.id + "/diff_" + name + ".png";
     }
+    if (!v.heatmap.empty() && show) {
+      write_png_rgba8(case_dir / ("heat_" + name + ".png"), v.heatmap);
+      r.files["heat:" + name] = c.id + "/heat_" + name + ".png";
+    }
     if (!v.identical && !v.golden.empty() && v.status != Status::kError) {
       // A copy written under a temporary name and renamed: never a truncated golden image in
       // the report, even on a full disk.
-      keep_in_report(case_dir / ("golden_" + name + ext_of(c)), read_file(v.golden));
-      r.files["golden:" + name] = c.id + "/golden_" + name + ext_of(c);
+      keep_in_report(case_dir / ("golden_" + name + ext), read_file(v.golden));
+      r.files["golden:" + name] = c.id + "/golden_" + name + ext;
     } else if (v.identical) {
-      r.files["golden:" + name] = c.id + "/" + name + ext_of(c);
+      r.files["golden:" + name] = c.id + "/" + name + ext;
     }
     if (r.message.empty() && v.status != Status::kPass) r.message = name + ": " + v.message;
     r.status = worst(r.status, v.status);
-    v.diff = {};
+    v.diff = {}, v.heatmap = {};
     r.images.push_back(std::move(v));
   }
 }
@@ -575,7 +569,7 @@ namespace {
 fs::path bless_target(const Suite& suite, const Case& c, const std::string& image,
                       const std::string& platform, const std::string& tag) {
   if (c.source && !c.source->golden_file.empty()) return c.source->golden_file;
-  return golden_path(suite.goldens / c.id, image, platform, tag);
+  return golden_path(suite.goldens / c.id, image, ext_of(c, image), platform, tag);
 }
 
 void write_case_goldens(const Suite& suite, const Case& c, const std::string& platform,
@@ -678,10 +672,10 @@ RunResults bless(const Suite& suite, const BlessOptions& b) {
           }
           if (!deleted) {
             for (const std::string& image : c.images) {
-              const fs::path f = b.run.report_dir / "cases" / c.id / (image + ext_of(c));
+              const fs::path f = b.run.report_dir / "cases" / c.id / (image + ext_of(c, image));
               try {
                 images.png[image] = read_file(f);
-                if (ext_of(c) == ".png") check_png(images.png[image], f.string());
+                if (ext_of(c, image) == ".png") check_png(images.png[image], f.string());
               } catch (const std::exception& e) {
                 throw std::runtime_error(std::string("the report's image is unusable: ") +
                                          e.what() + "; its goldens are untouched");

@@ -46,9 +46,49 @@ void read_params(const Reader& r, const toml::node& n, std::map<std::string, std
   }
 }
 
+// A metric's gates: `flip = { max_mean = 0.02, max_q3 = 0.3 }` (compare/metric.hpp says the keys).
+metric::Gates read_gates(const Reader& r, const metric::Metric& m, const toml::node& n) {
+  metric::Gates g{&m, {}, false};
+  for (const auto& [key, value] : r.table(n, m.name)) {
+    try {
+      const double v = value.is_boolean() ? double(r.boolean(value, key.str()))
+                                          : r.number(value, key.str());
+      metric::add_gate(g, key.str(), v);
+    } catch (const std::invalid_argument& e) {
+      r.fail(value.source(), e.what());
+    }
+  }
+  if (g.limits.empty()) r.fail(n.source(), fmt::format("{} sets no limit", m.name));
+  return g;
+}
+
 void read_tolerance(const Reader& r, const fs::path& dir, const toml::node& n, Tolerance& t) {
   const toml::table& tbl = r.table(n, "tolerance");
-  r.only_keys(tbl, {"mode", "max_mismatch_percent", "max_channel_delta", "ignore", "mask"});
+  static constexpr std::string_view kResembleKeys[] = {"mode", "max_mismatch_percent",
+                                                       "max_channel_delta", "ignore", "mask"};
+  bool resemble_named = false, metric_named = false;
+  for (const auto& [key, value] : tbl) {
+    if (std::find(std::begin(kResembleKeys), std::end(kResembleKeys), key.str()) !=
+        std::end(kResembleKeys)) {
+      resemble_named |= key.str() != "ignore" && key.str() != "mask";
+      continue;
+    }
+    const metric::Metric* m = nullptr;
+    try {
+      m = &metric::find(key.str());
+    } catch (const std::invalid_argument&) {
+      r.fail(value.source(), fmt::format("unknown key '{}' (tolerance keys: mode, "
+                                         "max_mismatch_percent, max_channel_delta, ignore, mask, "
+                                         "and the metrics {})",
+                                         printable(key.str()), metric::names()));
+    }
+    std::erase_if(t.gates, [&](const metric::Gates& g) { return g.metric == m; });
+    t.gates.push_back(read_gates(r, *m, value));
+    metric_named = true;
+  }
+  // Metric gates alone replace Resemble's; with Resemble's keys beside them, both hold.
+  if (metric_named) t.resemble = resemble_named;
+  if (resemble_named) t.resemble = true;
   if (const toml::node* m = tbl.get("mode")) {
     try {
       t.mode = resemble::parse_mode(r.string(*m, "mode"));
@@ -116,7 +156,7 @@ void read_common(const Reader& r, const fs::path& dir, const toml::table& t, Com
     c.images = r.strings(*n, "images");
     for (const std::string& name : c.images) {
       if (std::find(kImageNames.begin(), kImageNames.end(), name) == kImageNames.end()) {
-        r.fail(n->source(), "unknown image '" + name + "' (no_ao, with_ao, ao_only)");
+        r.fail(n->source(), "unknown image '" + name + "' (no_ao, with_ao, ao_only, ao_float)");
       }
     }
   }
@@ -269,6 +309,10 @@ std::string expand_placeholders(std::string_view text,
   return out;
 }
 
+std::string render_ext(std::string_view image) {
+  return image == "ao_float" ? ".exr" : ".png";
+}
+
 bool valid_name(std::string_view id) {
   return !id.empty() && id.size() <= 200 && id.front() != '.' &&
          std::all_of(id.begin(), id.end(), [](char ch) {
@@ -378,6 +422,10 @@ Suite load_suite(const fs::path& file) {
         k.width = c.width, k.height = c.height;
         k.images = c.images;
         k.tolerance = c.tolerance;
+        if (std::ranges::count(k.images, "ao_float") && k.tolerance.gates.empty()) {
+          r.fail(t.source(), "ao_float is judged by metric gates only: give the tolerance one "
+                             "(e.g. rmse = { max = 0.01 })");
+        }
         k.id = fmt::format("{}-{}-{}-{}x{}{}", scene->name, k.view, technique, k.width, k.height,
                            suffix);
         if (!valid_name(k.id)) {

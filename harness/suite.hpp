@@ -9,14 +9,20 @@
 #include <string>
 #include <vector>
 
+#include "compare/metric.hpp"
 #include "compare/resemble.hpp"
 #include "renderer/scene.hpp"
 #include "renderer/technique.hpp"
 
 namespace aosuite::harness {
 
-// How far a render may stray from its golden and still pass.
+// How far a render may stray from its golden and still pass: Resemble's gate, the metrics'
+// gates, or both (all must hold).
 struct Tolerance {
+  // Resemble's gate (mode, max_mismatch_percent, max_channel_delta) holds; off when a suite
+  // gives only metric gates. PNG images only.
+  bool resemble = true;
+  std::vector<metric::Gates> gates;  // e.g. flip = { max_mean = 0.02 }, rmse = { max = 0.01 }
   resemble::Mode mode = resemble::Mode::kLess;  // any Resemble.js mode
   double max_mismatch_percent = 0;              // Resemble's rawMisMatchPercentage, inclusive
   int max_channel_delta = 255;                  // largest |new - golden| of any RGBA channel
@@ -25,8 +31,11 @@ struct Tolerance {
       mask;  // pixels where this PNG is not black (any of R, G, B > 0) are ignored
 };
 
-// The images of a case that can be gated against goldens.
-inline constexpr std::array<const char*, 3> kImageNames{"no_ao", "with_ao", "ao_only"};
+// The images of a case that can be gated against goldens. ao_float is the AO term as float EXR
+// (ao_float.exr), rendered only for cases that gate it, by metric gates only.
+inline constexpr std::array<const char*, 4> kImageNames{"no_ao", "with_ao", "ao_only", "ao_float"};
+// The file type of a render's image: ".exr" for ao_float, else ".png".
+std::string render_ext(std::string_view image);
 
 // Where an image case's images come from instead of a scene: files a command writes, or files
 // already on disk. Each image is named by its file's stem (chart.png -> chart).

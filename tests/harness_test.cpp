@@ -261,14 +261,14 @@ TEST(Goldens, PlatformGoldensReplaceGenericOnesAndVariantsFollowThePrimary) {
     fs::create_directories(p.parent_path());
     std::ofstream(p) << "x";
   }
-  EXPECT_EQ(accepted_goldens(c, "with_ao", "llvm"),
+  EXPECT_EQ(accepted_goldens(c, "with_ao", ".png", "llvm"),
             (std::vector<fs::path>{c / "with_ao.png", c / "with_ao~a.png", c / "with_ao~b.png"}));
-  EXPECT_EQ(accepted_goldens(c, "ao_only", "llvm"),
+  EXPECT_EQ(accepted_goldens(c, "ao_only", ".png", "llvm"),
             std::vector<fs::path>{c / "llvm" / "ao_only.png"});
-  EXPECT_EQ(accepted_goldens(c, "ao_only", "other"), std::vector<fs::path>{c / "ao_only.png"});
-  EXPECT_TRUE(accepted_goldens(c, "no_ao", "").empty());
-  EXPECT_EQ(golden_path(c, "with_ao", "", ""), c / "with_ao.png");
-  EXPECT_EQ(golden_path(c, "with_ao", "llvm", "x"), c / "llvm" / "with_ao~x.png");
+  EXPECT_EQ(accepted_goldens(c, "ao_only", ".png", "other"), std::vector<fs::path>{c / "ao_only.png"});
+  EXPECT_TRUE(accepted_goldens(c, "no_ao", ".png", "").empty());
+  EXPECT_EQ(golden_path(c, "with_ao", ".png", "", ""), c / "with_ao.png");
+  EXPECT_EQ(golden_path(c, "with_ao", ".png", "llvm", "x"), c / "llvm" / "with_ao~x.png");
 }
 
 // `bless --platform` replaces the generic golden on that platform, not the variants accepted
@@ -281,20 +281,20 @@ TEST(Goldens, APlatformGoldenKeepsTheGenericVariantsAccepted) {
     fs::create_directories(p.parent_path());
     std::ofstream(p) << "x";
   }
-  EXPECT_EQ(accepted_goldens(c, "with_ao", "llvm"),
+  EXPECT_EQ(accepted_goldens(c, "with_ao", ".png", "llvm"),
             (std::vector<fs::path>{c / "llvm" / "with_ao.png", c / "llvm" / "with_ao~x.png",
                                    c / "with_ao~old-driver.png"}));
-  EXPECT_EQ(accepted_goldens(c, "with_ao", "other"),
+  EXPECT_EQ(accepted_goldens(c, "with_ao", ".png", "other"),
             (std::vector<fs::path>{c / "with_ao.png", c / "with_ao~old-driver.png"}));
 }
 
 // A golden folder that exists but cannot be listed is an error to fix, not "no golden yet".
 TEST(Goldens, AnUnreadableGoldenFolderIsAnErrorNotMissing) {
   test::TempDir dir;
-  EXPECT_TRUE(accepted_goldens(dir.path() / "absent", "with_ao", "llvm").empty());
+  EXPECT_TRUE(accepted_goldens(dir.path() / "absent", "with_ao", ".png", "llvm").empty());
   std::ofstream(dir.path() / "case") << "a file where the folder should be";
   try {
-    accepted_goldens(dir.path() / "case", "with_ao", "");
+    accepted_goldens(dir.path() / "case", "with_ao", ".png", "");
     ADD_FAILURE() << "no error";
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("case: cannot read the golden folder"), std::string::npos)
@@ -302,11 +302,11 @@ TEST(Goldens, AnUnreadableGoldenFolderIsAnErrorNotMissing) {
   }
   fs::create_directories(dir.path() / "c2");
   std::ofstream(dir.path() / "c2" / "llvm") << "a file where the platform folder should be";
-  EXPECT_THROW(accepted_goldens(dir.path() / "c2", "with_ao", "llvm"), std::runtime_error);
+  EXPECT_THROW(accepted_goldens(dir.path() / "c2", "with_ao", ".png", "llvm"), std::runtime_error);
   if (::geteuid() != 0) {  // root reads any folder
     fs::create_directories(dir.path() / "locked");
     fs::permissions(dir.path() / "locked", fs::perms::none);
-    EXPECT_THROW(accepted_goldens(dir.path() / "locked", "with_ao", ""), std::runtime_error);
+    EXPECT_THROW(accepted_goldens(dir.path() / "locked", "with_ao", ".png", ""), std::runtime_error);
     fs::permissions(dir.path() / "locked", fs::perms::owner_all);
   }
 }
