@@ -88,8 +88,13 @@ hs::RunOptions run_options(const hs::Suite& suite, const HarnessArgs& a) {
 void print_progress(const hs::CaseResult& r, int done, int total) {
   std::string detail;
   for (const hs::ImageVerdict& v : r.images) {
-    detail += fmt::format("  {} {}%{}", v.image, v.mismatch_text.empty() ? "-" : v.mismatch_text,
-                          v.identical ? " (identical)" : "");
+    detail += "  " + v.image;
+    // Resemble's mismatch where its gate holds (or nothing else was measured), then each gate.
+    if (r.tolerance.resemble || v.outcomes.empty())
+      detail += fmt::format(" {}%", v.mismatch_text.empty() ? "-" : v.mismatch_text);
+    for (const metric::Outcome& o : v.outcomes)
+      detail += fmt::format(" {} {} {:.4g}", o.metric, o.stat, o.value);
+    if (v.identical) detail += " (identical)";
   }
   if (r.status != hs::Status::kPass && !r.message.empty()) detail += "  " + r.message;
   if (r.kind == "folder") detail = "  " + r.source + detail;

@@ -148,9 +148,13 @@ double number_from(const nlohmann::json& j, double infinity = HUGE_VAL) {
 }  // namespace
 
 nlohmann::json to_json(const Outcome& o) {
-  return {{"metric", o.metric}, {"stat", o.stat},           {"value", number_or_null(o.value)},
-          {"limit", o.limit},   {"bound", o.is_max ? "max" : "min"},
-          {"margin", number_or_null(o.margin)}, {"pass", o.pass}};
+  return {{"metric", o.metric},
+          {"stat", o.stat},
+          {"value", number_or_null(o.value)},
+          {"limit", o.limit},
+          {"bound", o.is_max ? "max" : "min"},
+          {"margin", number_or_null(o.margin)},
+          {"pass", o.pass}};
 }
 
 Outcome outcome_from_json(const nlohmann::json& j) {

@@ -120,18 +120,51 @@ std::string file_of(const CaseResult& c, const std::string& role) {
   return it == c.files.end() ? std::string() : it->second;
 }
 
-// How close a case came to its limit: allowed minus measured mismatch (negative = over);
-// NaN when no image was measured.
+// How close a case came to its limits (negative = over): Resemble's allowed minus measured
+// mismatch, in percentage points, and each metric gate's margin as a percentage of its limit;
+// the smallest of them. NaN when nothing was measured.
 double margin_value(const CaseResult& c) {
-  double worst = c.tolerance.max_mismatch_percent;
-  bool any = false;
+  double worst = HUGE_VAL;
   for (const ImageVerdict& v : c.images) {
-    if (v.status == Status::kPass || v.status == Status::kFail) {
+    if (v.status != Status::kPass && v.status != Status::kFail) continue;
+    if (c.tolerance.resemble)
       worst = std::min(worst, c.tolerance.max_mismatch_percent - v.mismatch_percent);
-      any = true;
+    for (const metric::Outcome& o : v.outcomes) {
+      worst = std::min(worst, o.limit != 0 ? 100 * o.margin / std::abs(o.limit) : o.margin);
     }
   }
-  return any ? worst : std::nan("");
+  return std::isfinite(worst) ? worst : std::nan("");
+}
+
+// The tolerance in words: Resemble's gate when it holds, then each metric gate.
+std::string tolerance_text(const Tolerance& t) {
+  std::string out;
+  if (t.resemble) {
+    out = fmt::format("mode {}, ≤ {}% mismatch, channel Δ ≤ {}", resemble::mode_name(t.mode),
+                      t.max_mismatch_percent, t.max_channel_delta);
+  }
+  for (const metric::Gates& g : t.gates) {
+    for (const metric::Limit& l : g.limits) {
+      out += fmt::format("{}{} {} {} {}", out.empty() ? "" : "; ", g.metric->name, l.stat,
+                         l.is_max ? "≤" : "≥", l.limit);
+    }
+    if (g.allow_nonfinite) out += fmt::format(" ({} allows NaN/Inf)", g.metric->name);
+  }
+  return out;
+}
+
+nlohmann::json gates_json(const ImageVerdict& v) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const metric::Outcome& o : v.outcomes) {
+    out.push_back(
+        {{"gate", o.metric + " " + o.stat},
+         {"value", fmt::format("{:.6g}", o.value)},
+         {"limit",
+          o.stat == "nonfinite" ? "0" : fmt::format("{}{:.6g}", o.is_max ? "≤ " : "≥ ", o.limit)},
+         {"margin", fmt::format("{:+.6g}", o.margin)},
+         {"pass", o.pass}});
+  }
+  return out;
 }
 
 std::string margin(const CaseResult& c) {
@@ -249,7 +282,9 @@ void write_html_report(const RunResults& run, const fs::path& report_dir,
                         {"message", printable(v.message)},
                         {"new", url(file_of(c, v.image))},
                         {"golden", url(file_of(c, "golden:" + v.image))},
-                        {"diff", url(file_of(c, "diff:" + v.image))}});
+                        {"diff", url(file_of(c, "diff:" + v.image))},
+                        {"heat", url(file_of(c, "heat:" + v.image))},
+                        {"gates", gates_json(v)}});
     }
     // The thumbnail: the first gated image (the golden where there is no new one).
     std::string thumb;
@@ -266,9 +301,7 @@ void write_html_report(const RunResults& run, const fs::path& report_dir,
           fmt::format("{:.2f}% / {:.2f}%", c.ao_effect_less, c.ao_effect_nothing);
     }
     if (c.width > 0) about["size"] = fmt::format("{}x{}", c.width, c.height);
-    about["tolerance"] = fmt::format(
-        "mode {}, ≤ {}% mismatch, channel Δ ≤ {}", resemble::mode_name(c.tolerance.mode),
-        c.tolerance.max_mismatch_percent, c.tolerance.max_channel_delta);
+    about["tolerance"] = tolerance_text(c.tolerance);
     nlohmann::json params = nlohmann::json::object();
     for (const auto& [k, v] : c.params)
       params[k] = v.is_string() ? printable(v.get<std::string>()) : v.dump();
@@ -289,6 +322,7 @@ void write_html_report(const RunResults& run, const fs::path& report_dir,
                     {"seconds", std::round(c.seconds * 100) / 100},
                     {"thumb", thumb},
                     {"allowed", c.tolerance.max_mismatch_percent},
+                    {"resemble", c.tolerance.resemble},
                     {"margin", margin(c)},
                     {"about", about},
                     {"params", params},

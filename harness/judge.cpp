@@ -137,7 +137,8 @@ ImageVerdict against(std::string_view image, std::span<const unsigned char> rend
     const bool is_float = render.empty();
     if (is_float && t.gates.empty()) {
       v.status = Status::kFail, v.mismatch_percent = 100, v.mismatch_text = "100.00";
-      v.message = "the EXR files differ (without a metric gate, EXR images are compared byte for byte)";
+      v.message =
+          "the EXR files differ (without a metric gate, EXR images are compared byte for byte)";
       return v;
     }
     const Picture golden = decode_picture(bytes, golden_file.string());
@@ -152,7 +153,8 @@ ImageVerdict against(std::string_view image, std::span<const unsigned char> rend
       return v;
     }
     bool pass = true;
-    if (!is_float) pass = resemble_gate(decode_png_rgba8(bytes, golden_file.string()), render, t, v);
+    if (!is_float)
+      pass = resemble_gate(decode_png_rgba8(bytes, golden_file.string()), render, t, v);
     measure_gates(golden, rendered, t, want_map, v);
     const std::string failed = failed_gates(v);
     if (!failed.empty()) v.message += (v.message.empty() ? "" : "; ") + failed;

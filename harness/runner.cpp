@@ -383,9 +383,9 @@ void judge_case(const Suite& suite, const Case& c, const std::string& platform, 
   for (std::size_t i = 0; i < c.images.size(); ++i) {
     const std::string& name = c.images[i];
     const std::string ext = ext_of(c, name);
-    ImageVerdict v = judge(name, images.png.at(name),
-                           ext == ".png" ? pixels(images, name, case_dir) : cv::Mat(), goldens[i],
-                           c.tolerance, true);
+    ImageVerdict v =
+        judge(name, images.png.at(name), ext == ".png" ? pixels(images, name, case_dir) : cv::Mat(),
+              goldens[i], c.tolerance, true);
     const bool show = v.status == Status::kFail || o.diff_all;
     if (!v.diff.empty() && show) {
       write_png_rgba8(case_dir / ("diff_" + name + ".png"), v.diff);

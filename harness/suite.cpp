@@ -51,8 +51,8 @@ metric::Gates read_gates(const Reader& r, const metric::Metric& m, const toml::n
   metric::Gates g{&m, {}, false};
   for (const auto& [key, value] : r.table(n, m.name)) {
     try {
-      const double v = value.is_boolean() ? double(r.boolean(value, key.str()))
-                                          : r.number(value, key.str());
+      const double v =
+          value.is_boolean() ? double(r.boolean(value, key.str())) : r.number(value, key.str());
       metric::add_gate(g, key.str(), v);
     } catch (const std::invalid_argument& e) {
       r.fail(value.source(), e.what());
@@ -309,9 +309,7 @@ std::string expand_placeholders(std::string_view text,
   return out;
 }
 
-std::string render_ext(std::string_view image) {
-  return image == "ao_float" ? ".exr" : ".png";
-}
+std::string render_ext(std::string_view image) { return image == "ao_float" ? ".exr" : ".png"; }
 
 bool valid_name(std::string_view id) {
   return !id.empty() && id.size() <= 200 && id.front() != '.' &&
@@ -423,8 +421,9 @@ Suite load_suite(const fs::path& file) {
         k.images = c.images;
         k.tolerance = c.tolerance;
         if (std::ranges::count(k.images, "ao_float") && k.tolerance.gates.empty()) {
-          r.fail(t.source(), "ao_float is judged by metric gates only: give the tolerance one "
-                             "(e.g. rmse = { max = 0.01 })");
+          r.fail(t.source(),
+                 "ao_float is judged by metric gates only: give the tolerance one "
+                 "(e.g. rmse = { max = 0.01 })");
         }
         k.id = fmt::format("{}-{}-{}-{}x{}{}", scene->name, k.view, technique, k.width, k.height,
                            suffix);

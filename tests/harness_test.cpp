@@ -265,7 +265,8 @@ TEST(Goldens, PlatformGoldensReplaceGenericOnesAndVariantsFollowThePrimary) {
             (std::vector<fs::path>{c / "with_ao.png", c / "with_ao~a.png", c / "with_ao~b.png"}));
   EXPECT_EQ(accepted_goldens(c, "ao_only", ".png", "llvm"),
             std::vector<fs::path>{c / "llvm" / "ao_only.png"});
-  EXPECT_EQ(accepted_goldens(c, "ao_only", ".png", "other"), std::vector<fs::path>{c / "ao_only.png"});
+  EXPECT_EQ(accepted_goldens(c, "ao_only", ".png", "other"),
+            std::vector<fs::path>{c / "ao_only.png"});
   EXPECT_TRUE(accepted_goldens(c, "no_ao", ".png", "").empty());
   EXPECT_EQ(golden_path(c, "with_ao", ".png", "", ""), c / "with_ao.png");
   EXPECT_EQ(golden_path(c, "with_ao", ".png", "llvm", "x"), c / "llvm" / "with_ao~x.png");
@@ -306,7 +307,8 @@ TEST(Goldens, AnUnreadableGoldenFolderIsAnErrorNotMissing) {
   if (::geteuid() != 0) {  // root reads any folder
     fs::create_directories(dir.path() / "locked");
     fs::permissions(dir.path() / "locked", fs::perms::none);
-    EXPECT_THROW(accepted_goldens(dir.path() / "locked", "with_ao", ".png", ""), std::runtime_error);
+    EXPECT_THROW(accepted_goldens(dir.path() / "locked", "with_ao", ".png", ""),
+                 std::runtime_error);
     fs::permissions(dir.path() / "locked", fs::perms::owner_all);
   }
 }

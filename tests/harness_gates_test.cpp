@@ -1,0 +1,130 @@
+// Metric gates in a suite, as CI runs them: a case gated on FLIP for its final image and on
+// RMSE for its float AO term (ao_float.exr), blessed, passing, then caught by a deliberate
+// regression with each gate's value, limit and margin in results.json and the FLIP heat map
+// in the report; Resemble's gate is off when only metric gates are given.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "compare/opencv.hpp"
+#include "png_fixture.hpp"
+#include "process.hpp"
+
+namespace aosuite {
+namespace {
+
+namespace fs = std::filesystem;
+using test::read_text;
+
+class HarnessGates : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    fs::create_directories(dir_ / "suites");
+    // A copy of the shaders with SAO twice as dark: a deliberate regression.
+    fs::copy(fs::path(AOSUITE_SOURCE_DIR) / "renderer" / "shaders", dir_ / "broken");
+    std::string sao = read_text(dir_ / "broken" / "sao.frag");
+    const std::string term = "1.0 - sum * u_intensity";
+    ASSERT_NE(sao.find(term), std::string::npos) << "sao.frag changed; update this test";
+    sao.replace(sao.find(term), term.size(), "1.0 - 2.0 * sum * u_intensity");
+    std::ofstream(dir_ / "broken" / "sao.frag") << sao;
+  }
+  void suite(const std::string& tolerance, const std::string& images) {
+    std::ofstream(dir_ / "suites" / "g.toml") << R"(
+[[case]]
+scene = "corner"
+views = ["inside"]
+techniques = ["sao"]
+width = 64
+height = 36
+images = )" << images << "\n[case.tolerance]\n"
+                                              << tolerance;
+  }
+  test::Outcome aosuite(const std::string& args, const std::string& env = "") {
+    return test::run_shell(
+        "cd " + dir_.path().string() + " && " + env + " " + AOSUITE_BIN + " " + args, dir_.path());
+  }
+  std::string broken() const { return "AOSUITE_SHADER_DIR=" + (dir_ / "broken").string(); }
+  nlohmann::json results() const {
+    std::ifstream f(dir_ / "reports" / "g" / "results.json");
+    return nlohmann::json::parse(f);
+  }
+  const fs::path case_dir = fs::path("corner-inside-sao-64x36");
+  test::TempDir dir_;
+};
+
+TEST_F(HarnessGates, FlipAndAoFloatRmseGateACaseAndTheReportShowsTheHeatMap) {
+  suite("flip = { max_mean = 0.01, max_q3 = 0.2 }\nrmse = { max = 0.01 }\n",
+        R"(["with_ao", "ao_float"])");
+  test::Outcome r = aosuite("bless suites/g.toml");
+  ASSERT_EQ(r.rc, 0) << r.out << r.err;
+  EXPECT_TRUE(fs::is_regular_file(dir_ / "goldens" / "g" / case_dir / "with_ao.png"));
+  EXPECT_TRUE(fs::is_regular_file(dir_ / "goldens" / "g" / case_dir / "ao_float.exr"));
+  r = aosuite("check suites/g.toml");
+  ASSERT_EQ(r.rc, 0) << r.out << r.err;
+
+  r = aosuite("check suites/g.toml", broken());
+  EXPECT_EQ(r.rc, 1) << r.out << r.err;
+  EXPECT_NE(r.out.find("flip mean"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("rmse value"), std::string::npos) << r.out;
+  const nlohmann::json c = results().at("cases").at(0);
+  ASSERT_EQ(c.at("images").size(), 2u);
+  for (const nlohmann::json& v : c.at("images")) {
+    SCOPED_TRACE(v.dump());
+    EXPECT_EQ(v.at("status"), "FAIL");
+    ASSERT_FALSE(v.at("gates").empty());
+    bool over = false;
+    for (const nlohmann::json& g : v.at("gates")) {
+      const double value = g.at("value"), limit = g.at("limit"), margin = g.at("margin");
+      EXPECT_DOUBLE_EQ(margin, limit - value) << "max gates: margin = limit - value";
+      EXPECT_EQ(g.at("pass").get<bool>(), margin >= 0);
+      over |= !g.at("pass").get<bool>();
+    }
+    EXPECT_TRUE(over);
+    EXPECT_TRUE(v.at("metrics").contains("flip") && v.at("metrics").contains("rmse"));
+  }
+  // The FLIP map of the failing final image, written into the report and shown by it.
+  const std::string heat = c.at("files").at("heat:with_ao");
+  const cv::Mat map = read_png_rgba8(dir_ / "reports" / "g" / "cases" / heat);
+  EXPECT_EQ(map.cols, 64);
+  EXPECT_NE(read_text(dir_ / "reports" / "g" / "index.html").find("heat_with_ao.png"),
+            std::string::npos);
+  EXPECT_NE(read_text(dir_ / "reports" / "g" / "index.html").find("FLIP error"), std::string::npos);
+
+  // Loose gates: the same regression passes, for Resemble's gate is not asked for; and the
+  // changed tolerance is judged again, not reused.
+  suite("flip = { max_mean = 1 }\nrmse = { max = 1 }\n", R"(["with_ao", "ao_float"])");
+  r = aosuite("check suites/g.toml", broken());
+  EXPECT_EQ(r.rc, 0) << r.out << r.err;
+  // With Resemble's own keys beside them, its gate holds too, and fails.
+  suite("max_mismatch_percent = 0\nflip = { max_mean = 1 }\n", R"(["with_ao"])");
+  r = aosuite("check suites/g.toml", broken());
+  EXPECT_EQ(r.rc, 1) << r.out << r.err;
+  EXPECT_NE(r.out.find("mismatch"), std::string::npos) << r.out;
+}
+
+TEST_F(HarnessGates, BadGatesAreSuiteErrors) {
+  const std::pair<std::string, std::string> cases[] = {
+      {"rmse = { max = 0.01 }\n", R"(["ao_float", "nope"])"},
+      {"max_mismatch_percent = 1\n", R"(["ao_float"])"},
+      {"flip = { max_nope = 1 }\n", R"(["with_ao"])"},
+      {"flip = { }\n", R"(["with_ao"])"},
+      {"ssimm = { min = 0.9 }\n", R"(["with_ao"])"},
+      {"flip = { max = \"big\" }\n", R"(["with_ao"])"},
+  };
+  const char* messages[] = {
+      "unknown image 'nope'",        "ao_float is judged by metric gates only",
+      "flip has no gate 'max_nope'", "flip sets no limit",
+      "unknown key 'ssimm'",         "g.toml:"};
+  for (std::size_t i = 0; i < std::size(cases); ++i) {
+    SCOPED_TRACE(cases[i].first);
+    suite(cases[i].first, cases[i].second);
+    const test::Outcome r = aosuite("check suites/g.toml");
+    EXPECT_EQ(r.rc, 2) << r.out;
+    EXPECT_NE(r.err.find(messages[i]), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir_ / "reports" / "g" / "results.json"));
+  }
+}
+
+}  // namespace
+}  // namespace aosuite
