@@ -456,6 +456,8 @@ float kth_smallest(const std::vector<float>& v, std::size_t k) {
   return in_bucket[i];
 }
 
+}  // namespace
+
 // Pooling (tool/pooling.h): mean, min, max, weighted percentiles of values in [0, 1].
 void pool(FlipResult& r, bool tool_float) {
   const std::vector<float>& m = r.error_map;
@@ -523,6 +525,8 @@ void pool(FlipResult& r, bool tool_float) {
   r.first_weighted_quartile = weighted(0.25);
   r.third_weighted_quartile = weighted(0.75);
 }
+
+namespace {
 
 FlipResult run(const Source& s, int w, int h, const Options& o, const std::vector<float>& scales) {
   check_ppd(o);

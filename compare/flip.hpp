@@ -62,6 +62,10 @@ struct FlipResult {
   std::vector<float> error_map;  // width * height values in [0, 1], row-major
 };
 
+// Recomputes the pooled values (mean, weighted median and quartiles, min, max) from
+// r.error_map as it now is: after keeping only some pixels' errors, say.
+void pool(FlipResult& r, bool tool_float_pooling = false);
+
 // LDR-FLIP of two sRGB 8-bit images of one size (alpha is ignored, as the tool's stb_image
 // load with 3 channels ignores it). Throws std::invalid_argument for different sizes.
 FlipResult compare_ldr(RgbaView reference, RgbaView test, const Options& options = {});

@@ -72,6 +72,11 @@ Measurement measure(const Metric& metric, const Picture& reference, const Pictur
                                             test.name, test.kind(), reference.name,
                                             reference.kind(), metric.name));
   }
+  if (request.counted &&
+      request.counted->size() != std::size_t(sa.width) * std::size_t(sa.height)) {
+    throw std::invalid_argument(
+        fmt::format("{}: the pixel mask is not {}x{}", metric.name, sa.width, sa.height));
+  }
   if (!reference.is_float) return metric.measure(reference, test, request);
   Picture a = reference, b = test;  // FloatImage copies: the originals stay as read
   const std::uint64_t nonfinite = count_nonfinite(a.floats, b.floats, !metric.raw_floats);

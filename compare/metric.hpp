@@ -36,6 +36,9 @@ struct Measurement {
 
 struct Request {
   bool want_map = false;
+  // width * height flags (row-major): when given, means, percentiles and errors cover only the
+  // pixels whose flag is non-zero (geometry, not sky); the map still shows every pixel.
+  const std::vector<std::uint8_t>* counted = nullptr;
 };
 
 struct Metric {

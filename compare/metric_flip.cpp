@@ -30,6 +30,7 @@ std::vector<float> linear_rgb(const FloatImage& f) {
 
 Measurement measure_flip(const Picture& reference, const Picture& test, const Request& request) {
   flip::FlipResult f;
+  RgbaImage map;
   const bool hdr = reference.is_float && !reference.floats.srgb;
   if (!reference.is_float) {
     f = flip::compare_ldr(reference.rgba, test.rgba);
@@ -40,8 +41,17 @@ Measurement measure_flip(const Picture& reference, const Picture& test, const Re
     const flip::RgbFloatView vb{b.data(), w, h, std::size_t(w) * 3};
     f = hdr ? flip::compare_hdr(va, vb) : flip::compare_ldr_linear(va, vb);
   }
+  if (request.want_map) map = flip::error_map_image(f);
+  if (request.counted) {
+    std::size_t kept = 0;
+    for (std::size_t i = 0; i < f.error_map.size(); ++i)
+      if ((*request.counted)[i]) f.error_map[kept++] = f.error_map[i];
+    f.error_map.resize(kept);
+    flip::pool(f);
+  }
   Measurement m;
   m.metric = "flip";
+  m.map = std::move(map);
   m.values = {{"mean", f.mean},
               {"weighted_median", f.weighted_median},
               {"q1", f.first_weighted_quartile},
@@ -49,7 +59,6 @@ Measurement measure_flip(const Picture& reference, const Picture& test, const Re
               {"min", f.min},
               {"max", f.max}};
   if (hdr) m.facts = {{"start_exposure", f.start_exposure}, {"stop_exposure", f.stop_exposure}};
-  if (request.want_map) m.map = flip::error_map_image(f);
   return m;
 }
 

@@ -15,9 +15,10 @@ struct Errors {
   double mse = 0, max_abs = 0;
 };
 
-Errors errors(const Picture& reference, const Picture& test) {
+// Over the counted pixels (all without a mask); no pixel counted: no error.
+Errors errors(const Picture& reference, const Picture& test,
+              const std::vector<std::uint8_t>* counted) {
   Errors e;
-  double sum = 0;
   std::size_t n = 0;
   if (!reference.is_float) {
     // Integers: exact sums, one division at the end.
@@ -26,23 +27,29 @@ Errors errors(const Picture& reference, const Picture& test) {
     const RgbaView a = reference.rgba, b = test.rgba;
     for (int y = 0; y < a.height; ++y) {
       const unsigned char *pa = a.row(y), *pb = b.row(y);
-      for (int x = 0; x < a.width * 4; ++x) {
-        if ((x & 3) == 3) continue;  // alpha
-        const int d = std::abs(int(pa[x]) - int(pb[x]));
-        squares += std::uint64_t(d * d), worst = std::max(worst, d);
+      for (int x = 0; x < a.width; ++x) {
+        if (counted && !(*counted)[std::size_t(y) * std::size_t(a.width) + std::size_t(x)])
+          continue;
+        for (int c = 0; c < 3; ++c) {  // alpha is not compared
+          const int d = std::abs(int(pa[4 * x + c]) - int(pb[4 * x + c]));
+          squares += std::uint64_t(d * d), worst = std::max(worst, d);
+        }
+        n += 3;
       }
     }
-    n = a.bytes() / 4 * 3;
     e.mse = n ? double(squares) / double(n) / (255.0 * 255.0) : 0;
     e.max_abs = worst / 255.0;
     return e;
   }
   const std::vector<float>&a = reference.floats.data, &b = test.floats.data;
+  const std::size_t channels = std::size_t(reference.floats.channels);
+  double sum = 0;
   for (std::size_t i = 0; i < a.size(); ++i) {
+    if (counted && !(*counted)[i / channels]) continue;
     const double d = double(a[i]) - double(b[i]);
     sum += d * d, e.max_abs = std::max(e.max_abs, std::abs(d));
+    ++n;
   }
-  n = a.size();
   e.mse = n ? sum / double(n) : 0;
   return e;
 }
@@ -50,15 +57,15 @@ Errors errors(const Picture& reference, const Picture& test) {
 constexpr std::string_view kRmseStats[] = {"value", "max_abs"};
 constexpr std::string_view kPsnrStats[] = {"db"};
 
-Measurement measure_rmse(const Picture& reference, const Picture& test, const Request&) {
-  const Errors e = errors(reference, test);
+Measurement measure_rmse(const Picture& reference, const Picture& test, const Request& request) {
+  const Errors e = errors(reference, test, request.counted);
   Measurement m;
   m.metric = "rmse", m.values = {{"value", std::sqrt(e.mse)}, {"max_abs", e.max_abs}};
   return m;
 }
 
-Measurement measure_psnr(const Picture& reference, const Picture& test, const Request&) {
-  const Errors e = errors(reference, test);
+Measurement measure_psnr(const Picture& reference, const Picture& test, const Request& request) {
+  const Errors e = errors(reference, test, request.counted);
   const double db = e.mse > 0 ? 10.0 * std::log10(1.0 / e.mse) : HUGE_VAL;
   Measurement m;
   m.metric = "psnr", m.values = {{"db", db}}, m.facts = {{"data_range", 1.0}};

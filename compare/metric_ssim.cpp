@@ -10,8 +10,9 @@ namespace {
 
 constexpr std::string_view kStats[] = {"mean"};
 
-Measurement measure_ssim(const Picture& reference, const Picture& test, const Request&) {
+Measurement measure_ssim(const Picture& reference, const Picture& test, const Request& request) {
   ssim::Options o;
+  if (request.counted) o.counted = request.counted->data();
   ssim::SsimResult r;
   if (!reference.is_float) {
     r = ssim::compare_rgb(reference.rgba, test.rgba, o);

@@ -175,7 +175,11 @@ double channel_sum(const Input& in, const Options& o, const std::vector<double>&
         float* map_row = out + std::size_t(y) * W;
         for (int x = 0; x < w; ++x) map_row[x] = static_cast<float>(s_row[std::size_t(x)]);
       }
-      if (y >= cy0 && y < cy1) sum += row_sum(s_row.data(), x0, x1);
+      if (y >= cy0 && y < cy1 && !o.counted) sum += row_sum(s_row.data(), x0, x1);
+      if (y >= cy0 && y < cy1 && o.counted) {
+        const std::uint8_t* c = o.counted + std::size_t(y) * W;
+        for (int x = x0; x < x1; ++x) sum += c[x] ? s_row[std::size_t(x)] : 0.0;
+      }
     }
     band_sums[std::size_t(y0)] = sum;
   });
@@ -209,7 +213,18 @@ SsimResult run(std::vector<Input> channels, const Options& o) {
   }
   // scikit-image crops the window radius; images smaller than the window keep everything.
   const int crop = (w >= 2 * radius + 1 && h >= 2 * radius + 1) ? radius : 0;
-  const double count = double(w - 2 * crop) * double(h - 2 * crop);
+  double count = double(w - 2 * crop) * double(h - 2 * crop);
+  if (o.counted) {
+    count = 0;
+    for (int y = crop; y < h - crop; ++y)
+      for (int x = crop; x < w - crop; ++x)
+        count += o.counted[std::size_t(y) * std::size_t(w) + std::size_t(x)] != 0;
+    if (count == 0) {  // nothing counted: nothing differs
+      r.mean = 1.0;
+      r.channel_means.fill(1.0);
+      return r;
+    }
+  }
   double total = 0;
   for (std::size_t c = 0; c < channels.size(); ++c) {
     r.channel_means[c] = channel_sum(channels[c], o, taps, crop, nullptr) / count;

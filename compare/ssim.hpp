@@ -27,6 +27,9 @@ struct Options {
   double k1 = 0.01, k2 = 0.03;
   double sigma = 1.5, truncate = 3.5;  // window radius int(truncate * sigma + 0.5)
   Border border = Border::reflect;
+  // width * height flags (row-major): when given, the mean covers only the pixels whose flag is
+  // non-zero (within the crop), e.g. geometry and not sky. Filtering still sees every pixel.
+  const std::uint8_t* counted = nullptr;
 };
 
 // One channel: element (x, y) at data[y * row_stride + x * pixel_stride].

@@ -69,7 +69,11 @@ std::string judge_hash(const Case& c, const std::string& input,
   Hasher h;
   h.add(input);
   const Tolerance& t = c.tolerance;
-  h.add(t.resemble).add(t.mode).add(t.max_mismatch_percent).add(t.max_channel_delta);
+  h.add(t.resemble)
+      .add(t.foreground_only)
+      .add(t.mode)
+      .add(t.max_mismatch_percent)
+      .add(t.max_channel_delta);
   for (const metric::Gates& g : t.gates) {
     h.add(std::string(g.metric->name)).add(g.allow_nonfinite).add(g.limits.size());
     for (const metric::Limit& l : g.limits) h.add(l.stat).add(l.is_max).add(l.limit);

@@ -150,6 +150,7 @@ std::string tolerance_text(const Tolerance& t) {
     }
     if (g.allow_nonfinite) out += fmt::format(" ({} allows NaN/Inf)", g.metric->name);
   }
+  if (t.foreground_only) out += "; over geometry pixels only";
   return out;
 }
 

@@ -39,9 +39,16 @@ namespace {
 
 // The render with ignored regions taken from the golden, so neither Resemble nor the channel
 // delta sees a difference there.
-cv::Mat without_ignored(const cv::Mat& render, const cv::Mat& golden, const Tolerance& t) {
-  if (t.ignore.empty() && t.mask.empty()) return render;
+cv::Mat without_ignored(const cv::Mat& render, const cv::Mat& golden, const Tolerance& t,
+                        const Counted* counted) {
+  if (t.ignore.empty() && t.mask.empty() && !counted) return render;
   cv::Mat out = render.clone();
+  if (counted) {  // background: the golden's pixels, so nothing differs there
+    for (int y = 0; y < out.rows; ++y)
+      for (int x = 0; x < out.cols; ++x)
+        if (!(*counted)[std::size_t(y) * std::size_t(out.cols) + std::size_t(x)])
+          out.at<cv::Vec4b>(y, x) = golden.at<cv::Vec4b>(y, x);
+  }
   const cv::Rect frame(0, 0, render.cols, render.rows);
   for (const resemble::Box& b : t.ignore) {
     const cv::Rect r =
@@ -85,10 +92,11 @@ resemble::Options resemble_options(const Tolerance& t, bool diff) {
 
 // The metric gates of one golden against the render: every measurement and outcome.
 void measure_gates(const Picture& golden, const Picture& render, const Tolerance& t, bool want_map,
-                   ImageVerdict& v) {
+                   const Counted* counted, ImageVerdict& v) {
   for (const metric::Gates& g : t.gates) {
     const bool map = want_map && g.metric->name == "flip";
-    metric::Measurement m = metric::measure(*g.metric, golden, render, {.want_map = map});
+    metric::Measurement m =
+        metric::measure(*g.metric, golden, render, {.want_map = map, .counted = counted});
     for (metric::Outcome& o : metric::judge(g, m)) v.outcomes.push_back(std::move(o));
     if (map) v.heatmap = std::move(m.map);
     m.map = {};
@@ -104,12 +112,18 @@ std::string failed_gates(const ImageVerdict& v) {
 }
 
 // Resemble's gate on an 8-bit image; true when it holds (or the tolerance does not ask for it).
+// With `counted`, the mismatch is a percentage of the counted pixels, not of the frame.
 bool resemble_gate(const cv::Mat& golden, const cv::Mat& render, const Tolerance& t,
-                   ImageVerdict& v) {
-  const cv::Mat judged = without_ignored(render, golden, t);
+                   const Counted* counted, ImageVerdict& v) {
+  const cv::Mat judged = without_ignored(render, golden, t, counted);
   const resemble::Result r = resemble::compare(golden, judged, resemble_options(t, false));
   v.mismatch_percent = r.raw_mismatch_percentage;
   v.mismatch_text = r.mismatch_percentage;
+  if (counted) {
+    const auto n = std::ranges::count_if(*counted, [](std::uint8_t f) { return f != 0; });
+    v.mismatch_percent = n ? 100.0 * double(r.mismatch_count) / double(n) : 0.0;
+    v.mismatch_text = fmt::format("{:.2f}", v.mismatch_percent);
+  }
   v.max_channel_delta = max_channel_delta(golden, judged);
   const bool within =
       v.mismatch_percent <= t.max_mismatch_percent && v.max_channel_delta <= t.max_channel_delta;
@@ -125,7 +139,7 @@ bool resemble_gate(const cv::Mat& golden, const cv::Mat& render, const Tolerance
 // One golden against the render; kError when the golden cannot be read.
 ImageVerdict against(std::string_view image, std::span<const unsigned char> render_bytes,
                      const cv::Mat& render, const fs::path& golden_file, const Tolerance& t,
-                     bool want_map) {
+                     bool want_map, const Counted* counted) {
   ImageVerdict v;
   v.image = std::string(image), v.golden = golden_file;
   try {
@@ -154,8 +168,8 @@ ImageVerdict against(std::string_view image, std::span<const unsigned char> rend
     }
     bool pass = true;
     if (!is_float)
-      pass = resemble_gate(decode_png_rgba8(bytes, golden_file.string()), render, t, v);
-    measure_gates(golden, rendered, t, want_map, v);
+      pass = resemble_gate(decode_png_rgba8(bytes, golden_file.string()), render, t, counted, v);
+    measure_gates(golden, rendered, t, want_map, counted, v);
     const std::string failed = failed_gates(v);
     if (!failed.empty()) v.message += (v.message.empty() ? "" : "; ") + failed;
     v.status = pass && failed.empty() ? Status::kPass : Status::kFail;
@@ -179,7 +193,7 @@ bool closer(const ImageVerdict& a, const ImageVerdict& b) {
 
 ImageVerdict judge(std::string_view image, std::span<const unsigned char> render_bytes,
                    const cv::Mat& render, const std::vector<fs::path>& goldens,
-                   const Tolerance& tolerance, bool want_diff) {
+                   const Tolerance& tolerance, bool want_diff, const Counted* counted) {
   if (goldens.empty()) {
     ImageVerdict v;
     v.image = std::string(image), v.status = Status::kNew, v.message = "no golden yet";
@@ -189,7 +203,7 @@ ImageVerdict judge(std::string_view image, std::span<const unsigned char> render
   // error to repair, not something another variant may hide.
   std::vector<ImageVerdict> tried;
   for (const fs::path& g : goldens)
-    tried.push_back(against(image, render_bytes, render, g, tolerance, want_diff));
+    tried.push_back(against(image, render_bytes, render, g, tolerance, want_diff, counted));
   for (const ImageVerdict& v : tried) {
     if (v.status == Status::kError) return v;
   }
@@ -203,7 +217,7 @@ ImageVerdict judge(std::string_view image, std::span<const unsigned char> render
   ImageVerdict best = *std::min_element(tried.begin(), tried.end(), closer);
   if (want_diff && best.status == Status::kFail && best.mismatch_percent < 100 && !render.empty()) {
     const cv::Mat golden = read_png_rgba8(best.golden);
-    best.diff = resemble::compare(golden, without_ignored(render, golden, tolerance),
+    best.diff = resemble::compare(golden, without_ignored(render, golden, tolerance, counted),
                                   resemble_options(tolerance, true))
                     .diff;
   }

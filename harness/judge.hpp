@@ -39,8 +39,11 @@ struct ImageVerdict {
 // Resemble's gate and the metric gates. Missing goldens give kNew; an unreadable golden or
 // variant gives kError naming it, even when another variant passes; a golden of another size
 // or kind kFail with both named. A float image without metric gates is compared byte for byte.
+// `counted` (width * height flags; foreground_only's geometry pixels) restricts Resemble's
+// mismatch percentage and every metric to the flagged pixels.
+using Counted = std::vector<std::uint8_t>;
 ImageVerdict judge(std::string_view image, std::span<const unsigned char> render_bytes,
                    const cv::Mat& render, const std::vector<std::filesystem::path>& goldens,
-                   const Tolerance& tolerance, bool want_diff);
+                   const Tolerance& tolerance, bool want_diff, const Counted* counted = nullptr);
 
 }  // namespace aosuite::harness

@@ -82,6 +82,7 @@ json to_json(const CaseResult& c) {
           {"params", params},
           {"tolerance",
            {{"resemble", c.tolerance.resemble},
+            {"foreground_only", c.tolerance.foreground_only},
             {"gates", gates},
             {"mode", resemble::mode_name(c.tolerance.mode)},
             {"max_mismatch_percent", c.tolerance.max_mismatch_percent},
@@ -122,6 +123,7 @@ CaseResult case_from_json(const json& j) {
   for (const json& b : t.at("ignore")) c.tolerance.ignore.push_back({b[0], b[1], b[2], b[3]});
   c.tolerance.mask = t.at("mask").get<std::string>();
   c.tolerance.resemble = t.value("resemble", true);
+  c.tolerance.foreground_only = t.value("foreground_only", false);
   const json gates = t.value("gates", json::object());
   for (const auto& [name, g] : gates.items())
     c.tolerance.gates.push_back(metric::gates_from_json(metric::find(name), g));

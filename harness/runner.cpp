@@ -175,6 +175,7 @@ std::vector<std::string> kept_images(const Case& c) {
   if (c.source) return c.images;
   std::vector<std::string> out{"no_ao", "with_ao", "ao_only"};
   if (gates_ao_float(c)) out.push_back("ao_float");
+  if (c.tolerance.foreground_only) out.push_back("foreground");
   return out;
 }
 
@@ -190,6 +191,13 @@ void render_case(rd::Renderer& renderer, const Case& c, const fs::path& case_dir
   for (const auto& [name, mat] : out.rgba) {
     out.png[name] = encode_png_rgba8(mat, 6);
     keep_in_report(case_dir / (name + ".png"), out.png[name]);
+  }
+  if (c.tolerance.foreground_only) {
+    // Geometry where the G-buffer has depth: white; sky black. Kept, so a reused render has it.
+    cv::Mat mask(img.depth.size(), CV_8UC4, cv::Scalar(0, 0, 0, 255));
+    mask.setTo(cv::Scalar(255, 255, 255, 255), img.depth > 0);
+    out.png["foreground"] = encode_png_rgba8(mask, 6);
+    keep_in_report(case_dir / "foreground.png", out.png["foreground"]);
   }
   if (s.outputs.ao_float) {
     const fs::path exr = case_dir / "ao_float.exr";
@@ -365,6 +373,15 @@ std::vector<fs::path> goldens_of(const Suite& suite, const Case& c, const std::s
   return accepted_goldens(suite.goldens / c.id, image, ext_of(c, image), platform);
 }
 
+// foreground_only's pixels: the kept mask's white ones.
+std::optional<Counted> foreground(const Case& c, Rendered& images, const fs::path& case_dir) {
+  if (!c.tolerance.foreground_only) return std::nullopt;
+  const cv::Mat& mask = pixels(images, "foreground", case_dir);
+  Counted out(mask.total());
+  for (std::size_t i = 0; i < out.size(); ++i) out[i] = mask.ptr<cv::Vec4b>()[i][0] != 0;
+  return out;
+}
+
 void judge_case(const Suite& suite, const Case& c, const std::string& platform, const RunOptions& o,
                 const std::optional<CaseResult>& prev, CaseResult& r, Rendered& images) {
   const fs::path case_dir = o.report_dir / "cases" / c.id;
@@ -380,12 +397,13 @@ void judge_case(const Suite& suite, const Case& c, const std::string& platform, 
     return;
   }
   r.status = Status::kPass;
+  const std::optional<Counted> counted = foreground(c, images, case_dir);
   for (std::size_t i = 0; i < c.images.size(); ++i) {
     const std::string& name = c.images[i];
     const std::string ext = ext_of(c, name);
     ImageVerdict v =
         judge(name, images.png.at(name), ext == ".png" ? pixels(images, name, case_dir) : cv::Mat(),
-              goldens[i], c.tolerance, true);
+              goldens[i], c.tolerance, true, counted ? &*counted : nullptr);
     const bool show = v.status == Status::kFail || o.diff_all;
     if (!v.diff.empty() && show) {
       write_png_rgba8(case_dir / ("diff_" + name + ".png"), v.diff);

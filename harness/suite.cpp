@@ -64,13 +64,15 @@ metric::Gates read_gates(const Reader& r, const metric::Metric& m, const toml::n
 
 void read_tolerance(const Reader& r, const fs::path& dir, const toml::node& n, Tolerance& t) {
   const toml::table& tbl = r.table(n, "tolerance");
-  static constexpr std::string_view kResembleKeys[] = {"mode", "max_mismatch_percent",
-                                                       "max_channel_delta", "ignore", "mask"};
+  static constexpr std::string_view kResembleKeys[] = {
+      "mode", "max_mismatch_percent", "max_channel_delta", "ignore", "mask", "foreground_only"};
   bool resemble_named = false, metric_named = false;
   for (const auto& [key, value] : tbl) {
     if (std::find(std::begin(kResembleKeys), std::end(kResembleKeys), key.str()) !=
         std::end(kResembleKeys)) {
-      resemble_named |= key.str() != "ignore" && key.str() != "mask";
+      resemble_named |=
+          key.str() != "ignore" && key.str() != "mask" && key.str() != "foreground_only";
+      if (key.str() == "foreground_only") t.foreground_only = r.boolean(value, "foreground_only");
       continue;
     }
     const metric::Metric* m = nullptr;
@@ -79,7 +81,7 @@ void read_tolerance(const Reader& r, const fs::path& dir, const toml::node& n, T
     } catch (const std::invalid_argument&) {
       r.fail(value.source(), fmt::format("unknown key '{}' (tolerance keys: mode, "
                                          "max_mismatch_percent, max_channel_delta, ignore, mask, "
-                                         "and the metrics {})",
+                                         "foreground_only, and the metrics {})",
                                          printable(key.str()), metric::names()));
     }
     std::erase_if(t.gates, [&](const metric::Gates& g) { return g.metric == m; });
@@ -215,6 +217,11 @@ Case image_case(const Reader& r, const fs::path& dir, const toml::table& t, Comm
   auto src = std::make_shared<ImageSource>();
   src->dir = fs::absolute(dir).lexically_normal();
   k.width = c.width, k.height = c.height, k.tolerance = c.tolerance;
+  if (k.tolerance.foreground_only) {
+    r.fail(t.source(),
+           "foreground_only needs a rendered scene (its G-buffer says which pixels "
+           "are geometry); an image case has none");
+  }
   k.param_overrides = c.params, k.values = c.values;
   const toml::node* command = t.get("command");
   const toml::node* files = t.get("files");

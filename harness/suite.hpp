@@ -23,6 +23,9 @@ struct Tolerance {
   // gives only metric gates. PNG images only.
   bool resemble = true;
   std::vector<metric::Gates> gates;  // e.g. flip = { max_mean = 0.02 }, rmse = { max = 0.01 }
+  // Percentages and means over geometry pixels only (the G-buffer's depth says which), so sky
+  // does not dilute them. Scene cases only.
+  bool foreground_only = false;
   resemble::Mode mode = resemble::Mode::kLess;  // any Resemble.js mode
   double max_mismatch_percent = 0;              // Resemble's rawMisMatchPercentage, inclusive
   int max_channel_delta = 255;                  // largest |new - golden| of any RGBA channel

@@ -29,11 +29,12 @@ class HarnessGates : public ::testing::Test {
     sao.replace(sao.find(term), term.size(), "1.0 - 2.0 * sum * u_intensity");
     std::ofstream(dir_ / "broken" / "sao.frag") << sao;
   }
-  void suite(const std::string& tolerance, const std::string& images) {
+  void suite(const std::string& tolerance, const std::string& images,
+             const std::string& scene = "corner", const std::string& view = "inside") {
     std::ofstream(dir_ / "suites" / "g.toml") << R"(
 [[case]]
-scene = "corner"
-views = ["inside"]
+scene = ")" << scene << R"("
+views = [")" << view << R"("]
 techniques = ["sao"]
 width = 64
 height = 36
@@ -101,6 +102,35 @@ TEST_F(HarnessGates, FlipAndAoFloatRmseGateACaseAndTheReportShowsTheHeatMap) {
   r = aosuite("check suites/g.toml", broken());
   EXPECT_EQ(r.rc, 1) << r.out << r.err;
   EXPECT_NE(r.out.find("mismatch"), std::string::npos) << r.out;
+}
+
+// The same regression judged over the frame and over geometry only: the background is the
+// same in both images, so the counts agree and only the denominators differ.
+TEST_F(HarnessGates, ForegroundOnlyMeasuresGeometryPixelsOnly) {
+  const std::string images = R"(["with_ao"])";
+  suite("max_mismatch_percent = 100\nrmse = { max = 1 }\n", images, "spheres", "front");
+  ASSERT_EQ(aosuite("bless suites/g.toml").rc, 0);
+  ASSERT_EQ(aosuite("check suites/g.toml", broken()).rc, 0);
+  const nlohmann::json frame = results().at("cases").at(0).at("images").at(0);
+  suite("max_mismatch_percent = 100\nrmse = { max = 1 }\nforeground_only = true\n", images,
+        "spheres", "front");
+  ASSERT_EQ(aosuite("check suites/g.toml", broken()).rc, 0);
+  const nlohmann::json c = results().at("cases").at(0);
+  const nlohmann::json geometry = c.at("images").at(0);
+  const cv::Mat mask =
+      read_png_rgba8(dir_ / "reports" / "g" / "cases" / c.at("files").at("foreground"));
+  double fg = 0;
+  for (int y = 0; y < mask.rows; ++y)
+    for (int x = 0; x < mask.cols; ++x) fg += mask.at<cv::Vec4b>(y, x)[0] != 0;
+  const double all = double(mask.total());
+  ASSERT_GT(fg, 0.2 * all);
+  ASSERT_LT(fg, 0.95 * all) << "the view must show some sky";
+  EXPECT_NEAR(geometry.at("mismatch_percent").get<double>() * fg,
+              frame.at("mismatch_percent").get<double>() * all, 1e-6 * all);
+  const double rmse_frame = frame.at("metrics").at("rmse").at("value");
+  const double rmse_geometry = geometry.at("metrics").at("rmse").at("value");
+  ASSERT_GT(rmse_frame, 0);
+  EXPECT_NEAR(rmse_geometry * rmse_geometry * fg, rmse_frame * rmse_frame * all, 1e-9 * all);
 }
 
 TEST_F(HarnessGates, BadGatesAreSuiteErrors) {
