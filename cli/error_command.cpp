@@ -1,7 +1,9 @@
 // `aosuite error`: one technique's AO term (Images::ao, after its default blur) against the
 // ray-traced reference at the technique's radius, on the same G-buffer pixels; prints RMSE,
 // MAE, bias, PSNR and SSIM over all, depth-edge and interior pixels next to the reference's
-// noise floor, and optionally writes the reference and an error heat map.
+// noise floor, the final image's FLIP and SSIM against the same frame shaded with the
+// reference (reference/frame_error.hpp), and optionally writes the reference and an error
+// heat map.
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -11,6 +13,7 @@
 #include "cli/commands.hpp"
 #include "cli/gl_command_util.hpp"
 #include "compare/opencv.hpp"
+#include "reference/frame_error.hpp"
 #include "reference/reference_cache.hpp"
 #include "renderer/renderer.hpp"
 #include "renderer/scene_file.hpp"
@@ -67,7 +70,7 @@ int run_error(const ErrorArgs& a) {
   const rd::Scene scene = rd::load_scene(a.c.scene);
   const rd::View& view = rd::find_view(scene, a.c.view);
   rd::RenderSettings s = case_settings(a.c);
-  s.outputs = rd::parse_outputs("ao_float");
+  s.outputs = rd::parse_outputs("no_ao,ao_float");  // no_ao: the frame error's lighting
   s.outputs.normal = true;
   const ref::ReferenceSettings rs{a.rays, s.params.radius, ref::parse_variant(a.variant)};
   ref::validate(rs);
@@ -78,6 +81,7 @@ int run_error(const ErrorArgs& a) {
   const rd::Camera camera = rd::make_camera(view, s.width, s.height);
   const cv::Mat reference = cache.get(camera, img.depth, img.normal, rs);
   const ref::ErrorReport r = ref::measure_error(img.ao, reference, img.depth, {8, 0.05f, rs.rays});
+  const ref::FrameError frame = ref::frame_error(img.no_ao, img.ao, reference, img.depth);
 
   const std::string stem = fmt::format("{}_{}_{}", scene.name, view.name, a.c.technique);
   if (!a.out.empty()) {
@@ -100,6 +104,7 @@ int run_error(const ErrorArgs& a) {
                       {"cached", cache.last_was_cached()},
                       {"seconds", cache.last_seconds()}};
     j["error"] = to_json(r);
+    j["frame"] = {{"flip_mean", frame.flip_mean}, {"ssim", frame.ssim}};
     fmt::print("{}\n", j.dump(2));
     return kExitSame;
   }
@@ -112,6 +117,10 @@ int run_error(const ErrorArgs& a) {
   print_stats("all", r.all);
   print_stats("edge", r.edge);
   print_stats("interior", r.interior);
+  fmt::print(
+      "  final image against the same frame shaded with the reference: FLIP mean {:.4f}, "
+      "SSIM {:.4f}\n",
+      frame.flip_mean, frame.ssim);
   return kExitSame;
 }
 

@@ -121,7 +121,7 @@ void sweep_view(rd::Renderer& renderer, const SweepGrid& g, const harness::Selec
           for (const auto& [k, v] : tg.params) rd::set_param(s.params, k, v);
           if (samples > 0) s.params.samples = samples;
           s.params.radius = radius, s.params.intensity = intensity;
-          s.outputs = rd::parse_outputs("ao_float");
+          s.outputs = rd::parse_outputs("no_ao,ao_float");  // no_ao: the frame error's lighting
           const Timed t = render_timed(renderer, scene, view, s, g.runs);
           Row row{i,
                   scene.name,
@@ -136,9 +136,11 @@ void sweep_view(rd::Renderer& renderer, const SweepGrid& g, const harness::Selec
                   t.gl_ms,
                   ref::measure_error(t.images.ao, at_radius, t.images.depth, metric),
                   {},
+                  {},
                   tg.params};
           if (g.unbounded)
             row.unbounded = ref::measure_error(t.images.ao, unbounded, t.images.depth, metric).all;
+          row.frame = ref::frame_error(t.images.no_ao, t.images.ao, at_radius, t.images.depth);
           fmt::print("{} {} {}x{} {} s={} r={:g} k={:g}: {:.1f} ms, RMSE {:.4f}{}\n", row.scene,
                      row.view, w, h, label(row), samples, radius, intensity, row.gl_ms,
                      row.error.all.rmse,
@@ -155,7 +157,7 @@ std::string csv(const std::vector<Row>& rows, bool unbounded) {
   std::string out =
       "scene,view,technique,width,height,samples,radius,intensity,ao_gl_ms,pixels,rmse,"
       "mae,bias,psnr,ssim,noise_floor,edge_rmse,interior_rmse,rmse_unbounded,bias_unbounded,"
-      "ssim_unbounded,params\n";
+      "ssim_unbounded,frame_flip,frame_ssim,params\n";
   for (const Row& r : rows) {
     const ref::ErrorStats& a = r.error.all;
     out += fmt::format(
@@ -167,6 +169,7 @@ std::string csv(const std::vector<Row>& rows, bool unbounded) {
     out += unbounded ? fmt::format(",{:.6f},{:.6f},{:.6f}", r.unbounded.rmse, r.unbounded.bias,
                                    r.unbounded.ssim)
                      : ",,,";
+    out += fmt::format(",{:.6f},{:.6f}", r.frame.flip_mean, r.frame.ssim);
     // Quoted: list values hold commas.
     out += r.params.empty() ? ",\n" : fmt::format(",\"{}\"\n", params_text(r));
   }
@@ -179,16 +182,16 @@ std::string markdown(const std::vector<Row>& rows, const nlohmann::ordered_json&
   std::string md =
       "| scene | view | technique | size | s | r | k | AO ms | RMSE | noise | bias | SSIM | edge "
       "RMSE "
-      "| interior RMSE | RMSE unbounded "
-      "|\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+      "| interior RMSE | RMSE unbounded | frame FLIP | frame SSIM "
+      "|\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const Row& r : rows) {
     const ref::ErrorStats& a = r.error.all;
     md += fmt::format(
         "| {} | {} | {} | {}×{} | {} | {:g} | {:g} | {:.1f} | {:.4f} | {:.4f} | {:+.4f} | "
-        "{:.3f} | {:.4f} | {:.4f} | {} |\n",
+        "{:.3f} | {:.4f} | {:.4f} | {} | {:.4f} | {:.4f} |\n",
         r.scene, r.view, label(r), r.width, r.height, r.samples, r.radius, r.intensity, r.gl_ms,
         a.rmse, a.noise_floor, a.bias, a.ssim, r.error.edge.rmse, r.error.interior.rmse,
-        unbounded ? fmt::format("{:.4f}", r.unbounded.rmse) : "–");
+        unbounded ? fmt::format("{:.4f}", r.unbounded.rmse) : "–", r.frame.flip_mean, r.frame.ssim);
   }
   md +=
       "\n| scene | technique | size | fitted on | s | r | k | RMSE there | evaluated on | RMSE "

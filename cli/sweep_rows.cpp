@@ -20,7 +20,8 @@ nlohmann::ordered_json row_json(const Row& r, bool unbounded) {
                            {"intensity", r.intensity},
                            {"params", r.params},
                            {"ao_gl_ms", r.gl_ms},
-                           {"error", to_json(r.error)}};
+                           {"error", to_json(r.error)},
+                           {"frame", {{"flip_mean", r.frame.flip_mean}, {"ssim", r.frame.ssim}}}};
   if (unbounded) j["error_unbounded"] = to_json(r.unbounded);
   return j;
 }
@@ -35,6 +36,7 @@ Row row_from_json(const nlohmann::json& j) {
   r.params = j.at("params").get<std::map<std::string, std::string>>();
   r.gl_ms = j.at("ao_gl_ms");
   r.error = error_report_from_json(j.at("error"));
+  r.frame = {j.at("frame").at("flip_mean"), j.at("frame").at("ssim")};
   if (j.contains("error_unbounded")) r.unbounded = error_stats_from_json(j.at("error_unbounded"));
   return r;
 }

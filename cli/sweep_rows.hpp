@@ -8,6 +8,7 @@
 #include <string>
 
 #include "reference/error_metrics.hpp"
+#include "reference/frame_error.hpp"
 #include "renderer/technique.hpp"
 
 namespace aosuite::cli {
@@ -22,6 +23,7 @@ struct Row {
   double gl_ms = 0;  // the AO passes' GPU time (median of the runs)
   reference::ErrorReport error;
   reference::ErrorStats unbounded;
+  reference::FrameError frame;  // the final image's FLIP and SSIM against the reference's
   std::map<std::string, std::string> params;  // the grid's fixed parameters
 };
 

@@ -6,6 +6,7 @@
 
 #include "png_fixture.hpp"
 #include "reference/error_metrics.hpp"
+#include "reference/frame_error.hpp"
 #include "reference/reference_ao.hpp"
 #include "reference/reference_cache.hpp"
 #include "renderer/renderer.hpp"
@@ -303,6 +304,55 @@ TEST(ErrorMetrics, EveryTechniqueHasAFiniteErrorOnTheDefaultSuite) {
       }
     }
   }
+}
+
+}  // namespace
+}  // namespace aosuite::reference
+
+namespace aosuite::reference {
+namespace {
+
+// A lit frame with sky on the left, and an AO term that darkens a square on the right.
+struct Frame {
+  cv::Mat no_ao{24, 32, CV_8UC4, cv::Scalar(180, 140, 90, 255)};
+  cv::Mat depth{24, 32, CV_32F, cv::Scalar(1.0f)};
+  cv::Mat ao{24, 32, CV_32F, cv::Scalar(1.0f)};
+  Frame() {
+    depth(cv::Rect(0, 0, 8, 24)).setTo(0.0f);
+    no_ao(cv::Rect(0, 0, 8, 24)).setTo(cv::Scalar(158, 184, 219, 255));
+  }
+};
+
+TEST(FrameError, ShadingMatchesTheBlendPass) {
+  Frame f;
+  f.ao.setTo(0.5f);
+  const cv::Mat shaded = shade(f.no_ao, f.ao, f.depth);
+  // Sky keeps its colour; geometry is lit * AO in linear light: 180 -> 0.456 linear -> 0.228
+  // -> sRGB 0.5145 -> 131.
+  EXPECT_EQ(shaded.at<cv::Vec4b>(5, 2), f.no_ao.at<cv::Vec4b>(5, 2));
+  EXPECT_EQ(int(shaded.at<cv::Vec4b>(5, 20)[0]), 131);
+  EXPECT_EQ(int(shaded.at<cv::Vec4b>(5, 20)[3]), 255);
+  // AO 1 changes nothing.
+  const cv::Mat unchanged = shade(f.no_ao, cv::Mat(24, 32, CV_32F, cv::Scalar(1.0f)), f.depth);
+  EXPECT_EQ(cv::norm(unchanged, f.no_ao, cv::NORM_INF), 0.0);
+}
+
+TEST(FrameError, SameAoIsNoErrorAndMoreDarkeningIsMore) {
+  Frame f;
+  const FrameError same = frame_error(f.no_ao, f.ao, f.ao, f.depth);
+  EXPECT_EQ(same.flip_mean, 0.0);
+  EXPECT_EQ(same.ssim, 1.0);
+  cv::Mat light = f.ao.clone(), dark = f.ao.clone();
+  light(cv::Rect(16, 8, 8, 8)).setTo(0.8f);
+  dark(cv::Rect(16, 8, 8, 8)).setTo(0.3f);
+  const FrameError a = frame_error(f.no_ao, light, f.ao, f.depth);
+  const FrameError b = frame_error(f.no_ao, dark, f.ao, f.depth);
+  EXPECT_GT(a.flip_mean, 0.0);
+  EXPECT_GT(b.flip_mean, a.flip_mean);
+  EXPECT_LT(b.ssim, a.ssim);
+  EXPECT_LT(a.ssim, 1.0);
+  EXPECT_THROW(frame_error(f.no_ao, f.ao(cv::Rect(0, 0, 8, 8)).clone(), f.ao, f.depth),
+               std::invalid_argument);
 }
 
 }  // namespace

@@ -51,10 +51,16 @@ TEST(SweepCli, CiGridHasFiniteErrorsInEveryRow) {
   std::string line;
   std::getline(csv, line);
   const std::vector<std::string> header = split(line);
+  const auto flip_at = std::find(header.begin(), header.end(), "frame_flip") - header.begin();
+  ASSERT_LT(std::size_t(flip_at), header.size()) << "no frame_flip column";
   int rows = 0;
   for (; std::getline(csv, line); ++rows) {
     const std::vector<std::string> cells = split(line);
     ASSERT_EQ(cells.size(), header.size()) << line;
+    // The final image's FLIP against the reference-shaded frame: some error, never all.
+    const double frame_flip = std::strtod(cells[std::size_t(flip_at)].c_str(), nullptr);
+    EXPECT_GT(frame_flip, 0.0) << line;
+    EXPECT_LT(frame_flip, 1.0) << line;
     for (std::size_t i = 8; i < cells.size(); ++i) {  // times and errors
       if (header[i] == "params") continue;
       const double v = std::strtod(cells[i].c_str(), nullptr);
@@ -102,6 +108,10 @@ TEST(SweepCli, ErrorPrintsJsonAndWritesTheReference) {
   const auto j = nlohmann::json::parse(o.out);
   EXPECT_EQ(j["reference"]["radius"], 10.0);  // SAO's default radius
   EXPECT_GT(j["error"]["all"]["pixels"].get<int>(), 0);
+  EXPECT_GT(j["frame"]["flip_mean"].get<double>(), 0.0);
+  EXPECT_LT(j["frame"]["flip_mean"].get<double>(), 1.0);
+  EXPECT_GT(j["frame"]["ssim"].get<double>(), 0.0);
+  EXPECT_LT(j["frame"]["ssim"].get<double>(), 1.0);
   const std::string stem =
       j["scene"].get<std::string>() + "_" + j["view"].get<std::string>() + "_sao_";
   for (const char* f : {"reference.exr", "reference.png", "ao.png", "error.png"})

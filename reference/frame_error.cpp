@@ -1,0 +1,61 @@
+#include "reference/frame_error.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "compare/metric.hpp"
+
+namespace aosuite::reference {
+namespace {
+
+float to_linear(float c) {
+  return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
+}
+
+// blend.frag's to_srgb, then 8 bits as the GL read-back rounds them.
+unsigned char to_srgb8(float c) {
+  c = std::clamp(c, 0.0f, 1.0f);
+  const float s = c < 0.0031308f ? c * 12.92f : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
+  return static_cast<unsigned char>(std::lround(s * 255.0f));
+}
+
+Picture picture_of(const cv::Mat& rgba, const char* name) {
+  Picture p;
+  p.name = name;
+  p.rgba = RgbaImage(rgba.cols, rgba.rows);
+  for (int y = 0; y < rgba.rows; ++y)
+    std::copy_n(rgba.ptr<unsigned char>(y), std::size_t(rgba.cols) * 4,
+                p.rgba.data() + std::size_t(y) * std::size_t(rgba.cols) * 4);
+  return p;
+}
+
+}  // namespace
+
+cv::Mat shade(const cv::Mat& no_ao, const cv::Mat& ao, const cv::Mat& depth) {
+  if (no_ao.type() != CV_8UC4 || ao.type() != CV_32F || depth.type() != CV_32F ||
+      no_ao.size() != ao.size() || ao.size() != depth.size()) {
+    throw std::invalid_argument("shade: expected CV_8UC4, CV_32F and CV_32F images of one size");
+  }
+  cv::Mat out = no_ao.clone();
+  for (int y = 0; y < out.rows; ++y) {
+    for (int x = 0; x < out.cols; ++x) {
+      if (!(depth.at<float>(y, x) > 0)) continue;  // sky: no AO
+      const float a = std::clamp(ao.at<float>(y, x), 0.0f, 1.0f);
+      cv::Vec4b& p = out.at<cv::Vec4b>(y, x);
+      for (int c = 0; c < 3; ++c) p[c] = to_srgb8(to_linear(float(p[c]) / 255.0f) * a);
+    }
+  }
+  return out;
+}
+
+FrameError frame_error(const cv::Mat& no_ao, const cv::Mat& estimate, const cv::Mat& reference,
+                       const cv::Mat& depth) {
+  const Picture truth = picture_of(shade(no_ao, reference, depth), "reference frame");
+  const Picture test = picture_of(shade(no_ao, estimate, depth), "technique frame");
+  FrameError e;
+  e.flip_mean = metric::measure(metric::find("flip"), truth, test).value("mean");
+  e.ssim = metric::measure(metric::find("ssim"), truth, test).value("mean");
+  return e;
+}
+
+}  // namespace aosuite::reference
