@@ -3,6 +3,7 @@
 
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <set>
 
 #include "cli/commands.hpp"
@@ -21,7 +22,8 @@ namespace hs = aosuite::harness;
 struct HarnessArgs {
   std::string suite, filter, shard, report, junit, tag, goldens, actual, expected;
   int jobs = 1, retries = 0;
-  double max_mismatch = 0;
+  std::optional<double> max_mismatch;
+  std::vector<std::string> gates;
   bool diff_all = false, no_reuse = false, platform = false, list = false, json = false;
   bool force = false, from_report = false, failed = false, single_file = false;
 };
@@ -33,8 +35,12 @@ void add_selection_options(CLI::App* cmd, HarnessArgs& a) {
   cmd->add_option("--expected", a.expected,
                   "folder mode: the accepted images, paired with --actual by relative path");
   cmd->add_option("--max-mismatch", a.max_mismatch,
-                  "folder mode: allowed Resemble mismatch % per image (default 0)")
+                  "folder mode: allowed Resemble mismatch % per image (default 0, unless only "
+                  "--gate is given)")
       ->check(CLI::Range(0.0, 100.0));
+  cmd->add_option("--gate", a.gates,
+                  "folder mode: METRIC.KEY=VALUE, as in `compare --gate` (e.g. flip.max_mean=0.02; "
+                  "repeatable); EXR images are judged by these");
   cmd->add_option("--filter", a.filter,
                   "only cases whose id contains a match of this regular expression (anchor it, "
                   "'^id$', for exactly one case)");
@@ -59,13 +65,20 @@ hs::Suite load(const HarnessArgs& a) {
     throw std::invalid_argument(folders ? "give a suite file or --actual/--expected, not both"
                                         : "give a suite file, or --actual DIR --expected DIR");
   }
+  if (!folders && (a.max_mismatch || !a.gates.empty())) {
+    throw std::invalid_argument(
+        "--max-mismatch and --gate are folder mode's; a suite says its "
+        "tolerances itself");
+  }
   if (folders) {
     if (!a.goldens.empty() || a.platform || !a.tag.empty()) {
       throw std::invalid_argument(
           "folder mode takes no --goldens, --platform or --variant: --expected holds the goldens");
     }
     hs::Tolerance t;
-    t.max_mismatch_percent = a.max_mismatch;
+    t.max_mismatch_percent = a.max_mismatch.value_or(0);
+    for (const std::string& spec : a.gates) metric::add_gate_spec(t.gates, spec);
+    t.resemble = a.max_mismatch || t.gates.empty();  // as in a suite: gates alone replace it
     return hs::folder_suite(a.actual, a.expected, t);
   }
   hs::Suite suite = hs::load_suite(a.suite);

@@ -2,10 +2,6 @@
 
 #include <fmt/format.h>
 
-#include <algorithm>
-#include <cerrno>
-#include <cmath>
-#include <cstdlib>
 #include <stdexcept>
 
 #include "compare/image_io.hpp"
@@ -18,19 +14,6 @@ metric::Gates& entry(MetricPlan& plan, const metric::Metric& m) {
     if (g.metric == &m) return g;
   plan.metrics.push_back({&m, {}, false});
   return plan.metrics.back();
-}
-
-double gate_value(const std::string& spec, const std::string& text) {
-  char* end = nullptr;
-  errno = 0;
-  const double v = std::strtod(text.c_str(), &end);
-  if (text.empty() || *end != '\0' || errno == ERANGE || !std::isfinite(v)) {
-    if (text == "true") return 1;
-    if (text == "false") return 0;
-    throw std::invalid_argument(
-        fmt::format("--gate '{}': '{}' is not a finite number", spec, text));
-  }
-  return v;
 }
 
 }  // namespace
@@ -47,15 +30,7 @@ MetricPlan plan_metrics(const std::vector<std::string>& names,
       entry(plan, metric::find(n));
     }
   }
-  for (const std::string& spec : gates) {
-    const std::size_t dot = spec.find('.'), eq = spec.find('=');
-    if (dot == std::string::npos || eq == std::string::npos || eq < dot) {
-      throw std::invalid_argument(fmt::format(
-          "--gate '{}' is not METRIC.KEY=VALUE (e.g. flip.max_mean=0.02, ssim.min=0.98)", spec));
-    }
-    metric::Gates& g = entry(plan, metric::find(spec.substr(0, dot)));
-    metric::add_gate(g, spec.substr(dot + 1, eq - dot - 1), gate_value(spec, spec.substr(eq + 1)));
-  }
+  for (const std::string& spec : gates) metric::add_gate_spec(plan.metrics, spec);
   plan.heatmap = heatmap;
   if (!heatmap.empty()) entry(plan, metric::find("flip"));
   return plan;

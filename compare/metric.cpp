@@ -3,7 +3,9 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstdlib>
 #include <stdexcept>
 
 namespace aosuite::metric {
@@ -114,6 +116,29 @@ void add_gate(Gates& gates, std::string_view key, double value) {
         fmt::format("{} has no gate '{}' (gates: {})", m.name, key, gate_keys(m)));
   }
   gates.limits.push_back(l);
+}
+
+void add_gate_spec(std::vector<Gates>& list, std::string_view spec) {
+  const std::size_t dot = spec.find('.'), eq = spec.find('=');
+  if (dot == std::string_view::npos || eq == std::string_view::npos || eq < dot) {
+    throw std::invalid_argument(fmt::format(
+        "--gate '{}' is not METRIC.KEY=VALUE (e.g. flip.max_mean=0.02, ssim.min=0.98)", spec));
+  }
+  const Metric& m = find(spec.substr(0, dot));
+  const std::string text(spec.substr(eq + 1));
+  double value = text == "true" ? 1 : 0;
+  if (text != "true" && text != "false") {
+    char* end = nullptr;
+    errno = 0;
+    value = std::strtod(text.c_str(), &end);
+    if (text.empty() || *end != '\0' || errno == ERANGE || !std::isfinite(value)) {
+      throw std::invalid_argument(
+          fmt::format("--gate '{}': '{}' is not a finite number", spec, text));
+    }
+  }
+  auto it = std::find_if(list.begin(), list.end(), [&](const Gates& g) { return g.metric == &m; });
+  if (it == list.end()) it = list.insert(list.end(), Gates{&m, {}, false});
+  add_gate(*it, spec.substr(dot + 1, eq - dot - 1), value);
 }
 
 std::string Outcome::text() const {

@@ -79,6 +79,9 @@ struct Gates {
 };
 // Adds one `key = value` to `gates`; throws std::invalid_argument naming the accepted keys.
 void add_gate(Gates& gates, std::string_view key, double value);
+// Adds a command line's `METRIC.KEY=VALUE` (VALUE a number, or true/false) to the list, to the
+// metric's entry if it has one. Throws std::invalid_argument, one line, for a bad spec.
+void add_gate_spec(std::vector<Gates>& list, std::string_view spec);
 std::string gate_keys(const Metric& m);  // "max, min, max_mean, min_mean, ..., allow_nonfinite"
 
 struct Outcome {

@@ -169,7 +169,9 @@ void read_common(const Reader& r, const fs::path& dir, const toml::table& t, Com
 // An image's name from its file: the stem, which names golden and report files.
 std::string image_name(const Reader& r, const toml::node& at, const fs::path& file) {
   const std::string ext = file.extension().string();
-  if (ext != ".png") r.fail(at.source(), "'" + printable(file.string()) + "' is not a .png file");
+  if (ext != ".png" && ext != ".exr") {
+    r.fail(at.source(), "'" + printable(file.string()) + "' is not a .png or .exr file");
+  }
   const std::string stem = file.stem().string();
   if (!valid_name(stem) || stem == "case" || stem.starts_with("golden_") ||
       stem.starts_with("diff_") || stem.starts_with("thumb_")) {
@@ -256,6 +258,17 @@ Case image_case(const Reader& r, const fs::path& dir, const toml::table& t, Comm
     for (const std::string& f : r.strings(*files, "files")) {
       src->files.push_back(dir / f);
       k.images.push_back(image_name(r, *files, f));
+    }
+  }
+  // One file type per case: PNGs (Resemble and the metrics) or EXRs (the metrics, else bytes).
+  const std::vector<std::string>& names =
+      command ? src->outputs : std::vector<std::string>(src->files.begin(), src->files.end());
+  if (names.empty()) r.fail(t.source(), "an image case needs at least one image");
+  src->ext = fs::path(names.front()).extension().string();
+  for (const std::string& n : names) {
+    if (fs::path(n).extension() != src->ext) {
+      r.fail((command ? *t.get("outputs") : *files).source(),
+             "a case's images are all .png or all .exr");
     }
   }
   std::set<std::string> seen;

@@ -133,6 +133,45 @@ TEST_F(HarnessGates, ForegroundOnlyMeasuresGeometryPixelsOnly) {
   EXPECT_NEAR(rmse_geometry * rmse_geometry * fg, rmse_frame * rmse_frame * all, 1e-9 * all);
 }
 
+// Another renderer's float output, gated by a metric: folder mode's --gate, and an image case
+// naming EXR files.
+TEST_F(HarnessGates, EveryRenderersExrImagesAreGatedByMetrics) {
+  for (const char* t : {"alchemy", "sao"}) {
+    ASSERT_EQ(aosuite(std::string("render --scene corner --technique ") + t +
+                      " --width 40 --height 30 --outputs ao_float --out " + t)
+                  .rc,
+              0);
+  }
+  fs::create_directories(dir_ / "actual"), fs::create_directories(dir_ / "expected");
+  fs::copy_file(dir_ / "sao" / "corner_inside_sao_ao.exr", dir_ / "actual" / "ao.exr");
+  fs::copy_file(dir_ / "alchemy" / "corner_inside_alchemy_ao.exr", dir_ / "expected" / "ao.exr");
+  const std::string folders = "check --actual actual --expected expected --report rep";
+  test::Outcome r = aosuite(folders + " --gate rmse.max=0.001");
+  EXPECT_EQ(r.rc, 1) << r.out << r.err;
+  EXPECT_NE(r.out.find("rmse value"), std::string::npos) << r.out;
+  EXPECT_EQ(aosuite(folders + " --gate rmse.max=1 --gate ssim.min=0").rc, 0);
+  r = aosuite(folders);
+  EXPECT_EQ(r.rc, 1);
+  EXPECT_NE(r.out.find("compared byte for byte"), std::string::npos) << r.out;
+  EXPECT_EQ(aosuite("check suites/g.toml --gate rmse.max=1").rc, 2) << "a suite has its own";
+
+  std::ofstream(dir_ / "suites" / "e.toml") << R"(
+[[case]]
+name = "float-ao"
+files = ["../actual/ao.exr"]
+[case.tolerance]
+rmse = { max = 0.001 }
+)";
+  ASSERT_EQ(aosuite("bless suites/e.toml").rc, 0);
+  EXPECT_TRUE(fs::is_regular_file(dir_ / "goldens" / "e" / "float-ao" / "ao.exr"));
+  EXPECT_EQ(aosuite("check suites/e.toml").rc, 0);
+  fs::copy_file(dir_ / "expected" / "ao.exr", dir_ / "actual" / "ao.exr",
+                fs::copy_options::overwrite_existing);
+  r = aosuite("check suites/e.toml");
+  EXPECT_EQ(r.rc, 1) << r.out << r.err;
+  EXPECT_NE(r.out.find("rmse value"), std::string::npos) << r.out;
+}
+
 TEST_F(HarnessGates, BadGatesAreSuiteErrors) {
   const std::pair<std::string, std::string> cases[] = {
       {"rmse = { max = 0.01 }\n", R"(["ao_float", "nope"])"},
