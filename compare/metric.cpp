@@ -142,9 +142,11 @@ void add_gate_spec(std::vector<Gates>& list, std::string_view spec) {
 }
 
 std::string Outcome::text() const {
-  if (stat == "nonfinite") return fmt::format("{}: {} pixels are NaN or Inf", metric, value);
+  const std::string where = region.empty() ? "" : region + ": ";
+  if (stat == "nonfinite")
+    return fmt::format("{}{}: {} pixels are NaN or Inf", where, metric, value);
   const char* op = pass ? (is_max ? "<=" : ">=") : (is_max ? ">" : "<");
-  return fmt::format("{} {} {:.6g} {} {:.6g}", metric, stat, value, op, limit);
+  return fmt::format("{}{} {} {:.6g} {} {:.6g}", where, metric, stat, value, op, limit);
 }
 
 std::vector<Outcome> judge(const Gates& gates, const Measurement& m) {
@@ -152,10 +154,10 @@ std::vector<Outcome> judge(const Gates& gates, const Measurement& m) {
   // Only a gated metric judges: measured alone, NaN and Inf are counted, not failed.
   if (m.nonfinite && !gates.allow_nonfinite && !gates.limits.empty()) {
     out.push_back(
-        {m.metric, "nonfinite", double(m.nonfinite), 0, true, -double(m.nonfinite), false});
+        {m.metric, "nonfinite", "", double(m.nonfinite), 0, true, -double(m.nonfinite), false});
   }
   for (const Limit& l : gates.limits) {
-    Outcome o{m.metric, l.stat, m.value(l.stat), l.limit, l.is_max, 0, false};
+    Outcome o{m.metric, l.stat, "", m.value(l.stat), l.limit, l.is_max, 0, false};
     o.margin = l.is_max ? l.limit - o.value : o.value - l.limit;
     // +inf PSNR (identical images) passes any min and fails any max, with an infinite margin.
     o.pass = o.margin >= 0;
@@ -180,6 +182,7 @@ double number_from(const nlohmann::json& j, double infinity = HUGE_VAL) {
 nlohmann::json to_json(const Outcome& o) {
   return {{"metric", o.metric},
           {"stat", o.stat},
+          {"region", o.region},
           {"value", number_or_null(o.value)},
           {"limit", o.limit},
           {"bound", o.is_max ? "max" : "min"},
@@ -189,7 +192,7 @@ nlohmann::json to_json(const Outcome& o) {
 
 Outcome outcome_from_json(const nlohmann::json& j) {
   Outcome o;
-  o.metric = j.at("metric"), o.stat = j.at("stat");
+  o.metric = j.at("metric"), o.stat = j.at("stat"), o.region = j.value("region", "");
   o.value = number_from(j.at("value")), o.limit = j.at("limit");
   o.is_max = j.at("bound") == "max";
   o.margin = number_from(j.at("margin"), o.is_max ? -HUGE_VAL : HUGE_VAL);

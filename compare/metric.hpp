@@ -86,11 +86,12 @@ std::string gate_keys(const Metric& m);  // "max, min, max_mean, min_mean, ..., 
 
 struct Outcome {
   std::string metric, stat;  // stat "nonfinite" for the NaN/Inf check
+  std::string region;        // the pixels judged, when not the whole image (a region's name)
   double value = 0, limit = 0;
   bool is_max = true;
   double margin = 0;  // how far inside the limit (negative: beyond it), in the stat's units
   bool pass = false;
-  std::string text() const;  // "flip mean 0.031 > 0.02"
+  std::string text() const;  // "flip mean 0.031 > 0.02", "edges: flip mean 0.031 > 0.02"
 };
 std::vector<Outcome> judge(const Gates& gates, const Measurement& m);
 

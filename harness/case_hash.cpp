@@ -74,15 +74,28 @@ std::string judge_hash(const Case& c, const std::string& input,
       .add(t.mode)
       .add(t.max_mismatch_percent)
       .add(t.max_channel_delta);
-  for (const metric::Gates& g : t.gates) {
-    h.add(std::string(g.metric->name)).add(g.allow_nonfinite).add(g.limits.size());
-    for (const metric::Limit& l : g.limits) h.add(l.stat).add(l.is_max).add(l.limit);
+  const auto add_gates = [&](const std::vector<metric::Gates>& gates) {
+    h.add(gates.size());
+    for (const metric::Gates& g : gates) {
+      h.add(std::string(g.metric->name)).add(g.allow_nonfinite).add(g.limits.size());
+      for (const metric::Limit& l : g.limits) h.add(l.stat).add(l.is_max).add(l.limit);
+    }
+  };
+  add_gates(t.gates);
+  for (const Region& r : t.regions) {
+    h.add(r.name).add(r.color);
+    add_gates(r.gates);
   }
   for (const resemble::Box& b : t.ignore) h.add(b.left).add(b.top).add(b.right).add(b.bottom);
   if (!t.mask.empty()) h.add_file(t.mask);
   for (std::size_t i = 0; i < goldens.size(); ++i) {
     h.add(c.images[i]).add(goldens[i].size());
-    for (const fs::path& g : goldens[i]) h.add(g.parent_path().filename().string()).add_file(g);
+    for (const fs::path& g : goldens[i]) {
+      h.add(g.parent_path().filename().string()).add_file(g);
+      // The region map beside it decides which pixels each region's gates see.
+      const fs::path map = region_map(g, c.images[i]);
+      if (!t.regions.empty() && fs::is_regular_file(map)) h.add_file(map);
+    }
   }
   return h.hex();
 }

@@ -150,6 +150,14 @@ std::string tolerance_text(const Tolerance& t) {
     }
     if (g.allow_nonfinite) out += fmt::format(" ({} allows NaN/Inf)", g.metric->name);
   }
+  for (const Region& r : t.regions) {
+    for (const metric::Gates& g : r.gates) {
+      for (const metric::Limit& l : g.limits) {
+        out += fmt::format("; region {} ({},{},{}): {} {} {} {}", r.name, r.color[0], r.color[1],
+                           r.color[2], g.metric->name, l.stat, l.is_max ? "≤" : "≥", l.limit);
+      }
+    }
+  }
   if (t.foreground_only) out += "; over geometry pixels only";
   return out;
 }
@@ -158,7 +166,7 @@ nlohmann::json gates_json(const ImageVerdict& v) {
   nlohmann::json out = nlohmann::json::array();
   for (const metric::Outcome& o : v.outcomes) {
     out.push_back(
-        {{"gate", o.metric + " " + o.stat},
+        {{"gate", (o.region.empty() ? "" : o.region + ": ") + o.metric + " " + o.stat},
          {"value", fmt::format("{:.6g}", o.value)},
          {"limit",
           o.stat == "nonfinite" ? "0" : fmt::format("{}{:.6g}", o.is_max ? "≤ " : "≥ ", o.limit)},
@@ -285,6 +293,7 @@ void write_html_report(const RunResults& run, const fs::path& report_dir,
                         {"golden", url(file_of(c, "golden:" + v.image))},
                         {"diff", url(file_of(c, "diff:" + v.image))},
                         {"heat", url(file_of(c, "heat:" + v.image))},
+                        {"regions", url(file_of(c, "regions:" + v.image))},
                         {"gates", gates_json(v)}});
     }
     // The thumbnail: the first gated image (the golden where there is no new one).

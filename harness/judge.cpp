@@ -91,16 +91,75 @@ resemble::Options resemble_options(const Tolerance& t, bool diff) {
 }
 
 // The metric gates of one golden against the render: every measurement and outcome.
-void measure_gates(const Picture& golden, const Picture& render, const Tolerance& t, bool want_map,
-                   const Counted* counted, ImageVerdict& v) {
-  for (const metric::Gates& g : t.gates) {
-    const bool map = want_map && g.metric->name == "flip";
+// One set of gates over the counted pixels (all: null); `region` names them in the outcomes.
+// Only the whole image's (or the unpainted pixels') measurements are kept as the image's
+// values; a region's show in its outcomes.
+void measure_set(const std::vector<metric::Gates>& gates, const std::string& region,
+                 const Picture& golden, const Picture& render, bool want_map,
+                 const Counted* counted, ImageVerdict& v) {
+  for (const metric::Gates& g : gates) {
+    const bool map = want_map && v.heatmap.empty() && g.metric->name == "flip";
     metric::Measurement m =
         metric::measure(*g.metric, golden, render, {.want_map = map, .counted = counted});
-    for (metric::Outcome& o : metric::judge(g, m)) v.outcomes.push_back(std::move(o));
+    for (metric::Outcome& o : metric::judge(g, m)) {
+      o.region = region;
+      v.outcomes.push_back(std::move(o));
+    }
     if (map) v.heatmap = std::move(m.map);
     m.map = {};
-    v.measured.push_back(std::move(m));
+    if (region.empty()) v.measured.push_back(std::move(m));
+  }
+}
+
+// Each pixel's class in the region map beside the golden: 0 unpainted, i + 1 for regions[i].
+// Throws std::runtime_error naming the map when it is missing, of another size, or holds a
+// colour no region has.
+std::vector<std::uint8_t> region_classes(const fs::path& file, const Tolerance& t, ImageSize size) {
+  if (!fs::is_regular_file(file)) {
+    throw std::runtime_error(fmt::format(
+        "{}: no region map (the tolerance has regions; `bless` writes an empty one to paint)",
+        file.string()));
+  }
+  const cv::Mat map = read_png_rgba8(file);
+  if (map.cols != size.width || map.rows != size.height) {
+    throw std::runtime_error(fmt::format("{}: the region map is {}x{}, the image {}x{}",
+                                         file.string(), map.cols, map.rows, size.width,
+                                         size.height));
+  }
+  std::vector<std::uint8_t> out(map.total(), 0);
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    const cv::Vec4b p = map.ptr<cv::Vec4b>()[i];
+    if (p[0] == 0 && p[1] == 0 && p[2] == 0) continue;
+    for (std::size_t k = 0; k < t.regions.size() && !out[i]; ++k) {
+      const auto& c = t.regions[k].color;
+      if (p[0] == c[0] && p[1] == c[1] && p[2] == c[2]) out[i] = std::uint8_t(k + 1);
+    }
+    if (!out[i]) {
+      throw std::runtime_error(fmt::format("{}: pixel ({}, {}) is ({}, {}, {}), no region's colour",
+                                           file.string(), i % map.cols, i / map.cols, p[0], p[1],
+                                           p[2]));
+    }
+  }
+  return out;
+}
+
+// The tolerance's metric gates, over the counted pixels; with regions, each region's gates
+// over its painted pixels and the tolerance's over the unpainted ones.
+void measure_gates(const Picture& golden, const Picture& render, const Tolerance& t,
+                   const fs::path& golden_file, std::string_view image, bool want_map,
+                   const Counted* counted, ImageVerdict& v) {
+  if (t.regions.empty()) {
+    measure_set(t.gates, "", golden, render, want_map, counted, v);
+    return;
+  }
+  const std::vector<std::uint8_t> classes =
+      region_classes(region_map(golden_file, image), t, golden.size());
+  for (std::size_t k = 0; k <= t.regions.size(); ++k) {
+    Counted mask(classes.size());
+    for (std::size_t i = 0; i < mask.size(); ++i)
+      mask[i] = classes[i] == k && (!counted || (*counted)[i]);
+    measure_set(k == 0 ? t.gates : t.regions[k - 1].gates, k == 0 ? "" : t.regions[k - 1].name,
+                golden, render, want_map, &mask, v);
   }
 }
 
@@ -169,7 +228,7 @@ ImageVerdict against(std::string_view image, std::span<const unsigned char> rend
     bool pass = true;
     if (!is_float)
       pass = resemble_gate(decode_png_rgba8(bytes, golden_file.string()), render, t, counted, v);
-    measure_gates(golden, rendered, t, want_map, counted, v);
+    measure_gates(golden, rendered, t, golden_file, image, want_map, counted, v);
     const std::string failed = failed_gates(v);
     if (!failed.empty()) v.message += (v.message.empty() ? "" : "; ") + failed;
     v.status = pass && failed.empty() ? Status::kPass : Status::kFail;

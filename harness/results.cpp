@@ -63,8 +63,15 @@ json to_json(const CaseResult& c) {
   }
   for (const resemble::Box& b : c.tolerance.ignore)
     ignore.push_back({b.left, b.top, b.right, b.bottom});
-  json gates = json::object();
-  for (const metric::Gates& g : c.tolerance.gates) gates[std::string(g.metric->name)] = to_json(g);
+  const auto gates_of = [](const std::vector<metric::Gates>& list) {
+    json out = json::object();
+    for (const metric::Gates& g : list) out[std::string(g.metric->name)] = to_json(g);
+    return out;
+  };
+  const json gates = gates_of(c.tolerance.gates);
+  json regions = json::object();
+  for (const Region& r : c.tolerance.regions)
+    regions[r.name] = {{"color", r.color}, {"gates", gates_of(r.gates)}};
   json params = json::object();
   for (const auto& [k, v] : c.params)
     params[k] = v.is_string() ? json(printable(v.get<std::string>())) : v;
@@ -84,6 +91,7 @@ json to_json(const CaseResult& c) {
            {{"resemble", c.tolerance.resemble},
             {"foreground_only", c.tolerance.foreground_only},
             {"gates", gates},
+            {"regions", regions},
             {"mode", resemble::mode_name(c.tolerance.mode)},
             {"max_mismatch_percent", c.tolerance.max_mismatch_percent},
             {"max_channel_delta", c.tolerance.max_channel_delta},
@@ -124,9 +132,17 @@ CaseResult case_from_json(const json& j) {
   c.tolerance.mask = t.at("mask").get<std::string>();
   c.tolerance.resemble = t.value("resemble", true);
   c.tolerance.foreground_only = t.value("foreground_only", false);
-  const json gates = t.value("gates", json::object());
-  for (const auto& [name, g] : gates.items())
-    c.tolerance.gates.push_back(metric::gates_from_json(metric::find(name), g));
+  const auto gates_from = [](const json& list, std::vector<metric::Gates>& out) {
+    for (const auto& [name, g] : list.items())
+      out.push_back(metric::gates_from_json(metric::find(name), g));
+  };
+  gates_from(t.value("gates", json::object()), c.tolerance.gates);
+  const json regions = t.value("regions", json::object());
+  for (const auto& [name, r] : regions.items()) {
+    Region region{name, r.at("color").get<std::array<int, 3>>(), {}};
+    gates_from(r.at("gates"), region.gates);
+    c.tolerance.regions.push_back(std::move(region));
+  }
   c.status = parse_status(j.at("status").get<std::string>());
   c.message = j.at("message");
   for (const json& v : j.at("images")) c.images.push_back(verdict_from_json(v));

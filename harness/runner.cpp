@@ -13,6 +13,7 @@
 #include "compare/exr_file.hpp"
 #include "compare/image_io.hpp"
 #include "compare/opencv.hpp"
+#include "compare/picture.hpp"
 #include "harness/case_hash.hpp"
 #include "harness/command.hpp"
 #include "harness/escape.hpp"
@@ -413,6 +414,13 @@ void judge_case(const Suite& suite, const Case& c, const std::string& platform, 
       write_png_rgba8(case_dir / ("heat_" + name + ".png"), v.heatmap);
       r.files["heat:" + name] = c.id + "/heat_" + name + ".png";
     }
+    if (!c.tolerance.regions.empty() && !v.golden.empty()) {
+      const fs::path map = region_map(v.golden, name);
+      if (fs::is_regular_file(map)) {
+        keep_in_report(case_dir / ("regions_" + name + ".png"), read_file(map));
+        r.files["regions:" + name] = c.id + "/regions_" + name + ".png";
+      }
+    }
     if (!v.identical && !v.golden.empty() && v.status != Status::kError) {
       // A copy written under a temporary name and renamed: never a truncated golden image in
       // the report, even on a full disk.
@@ -597,9 +605,22 @@ void write_case_goldens(const Suite& suite, const Case& c, const std::string& pl
                            : suite.goldens / c.id;
   std::vector<GoldenWrite> writes;
   std::string written;
+  std::vector<std::vector<unsigned char>> blank_maps;
+  blank_maps.reserve(c.images.size());
   for (const std::string& image : c.images) {
-    writes.emplace_back(bless_target(suite, c, image, platform, tag), images.png.at(image));
+    const fs::path target = bless_target(suite, c, image, platform, tag);
+    writes.emplace_back(target, images.png.at(image));
     written += (written.empty() ? "" : ", ") + writes.back().first.string();
+    // Regions need a map beside the golden: a black one (every pixel unpainted) to paint,
+    // never over one that exists.
+    const fs::path map = region_map(target, image);
+    if (!c.tolerance.regions.empty() && !fs::exists(map)) {
+      const ImageSize size = decode_picture(images.png.at(image), target.string()).size();
+      blank_maps.push_back(
+          encode_png_rgba8(cv::Mat(size.height, size.width, CV_8UC4, cv::Scalar(0, 0, 0, 255)), 6));
+      writes.emplace_back(map, blank_maps.back());
+      written += ", " + map.string();
+    }
   }
   remove_stale_temporaries(dir);
   try {

@@ -62,6 +62,39 @@ metric::Gates read_gates(const Reader& r, const metric::Metric& m, const toml::n
   return g;
 }
 
+// [tolerance.regions]: name = { color = [R, G, B], <metric> = { gates }, ... }.
+std::vector<Region> read_regions(const Reader& r, const toml::node& n) {
+  std::vector<Region> out;
+  for (const auto& [name, value] : r.table(n, "regions")) {
+    Region g;
+    g.name = std::string(name.str());
+    if (!valid_name(g.name))
+      r.fail(value.source(), "region name '" + printable(g.name) + "' is not a name");
+    const toml::table& tbl = r.table(value, g.name);
+    const toml::node& color = r.required(tbl, "color");
+    const toml::array* rgb = color.as_array();
+    if (!rgb || rgb->size() != 3) r.fail(color.source(), "color is [R, G, B]");
+    for (int c = 0; c < 3; ++c)
+      g.color[std::size_t(c)] = r.integer((*rgb)[std::size_t(c)], "color", 0, 255);
+    if (g.color == std::array<int, 3>{}) r.fail(color.source(), "black marks unclassified pixels");
+    for (const Region& other : out)
+      if (other.color == g.color) r.fail(color.source(), "two regions share a colour");
+    for (const auto& [key, gates] : tbl) {
+      if (key.str() == "color") continue;
+      const metric::Metric* m = nullptr;
+      try {
+        m = &metric::find(key.str());
+      } catch (const std::invalid_argument& e) {
+        r.fail(gates.source(), e.what());
+      }
+      g.gates.push_back(read_gates(r, *m, gates));
+    }
+    if (g.gates.empty()) r.fail(value.source(), "region '" + g.name + "' has no metric gate");
+    out.push_back(std::move(g));
+  }
+  return out;
+}
+
 void read_tolerance(const Reader& r, const fs::path& dir, const toml::node& n, Tolerance& t) {
   const toml::table& tbl = r.table(n, "tolerance");
   static constexpr std::string_view kResembleKeys[] = {
@@ -75,13 +108,17 @@ void read_tolerance(const Reader& r, const fs::path& dir, const toml::node& n, T
       if (key.str() == "foreground_only") t.foreground_only = r.boolean(value, "foreground_only");
       continue;
     }
+    if (key.str() == "regions") {
+      t.regions = read_regions(r, value);
+      continue;
+    }
     const metric::Metric* m = nullptr;
     try {
       m = &metric::find(key.str());
     } catch (const std::invalid_argument&) {
       r.fail(value.source(), fmt::format("unknown key '{}' (tolerance keys: mode, "
                                          "max_mismatch_percent, max_channel_delta, ignore, mask, "
-                                         "foreground_only, and the metrics {})",
+                                         "foreground_only, regions, and the metrics {})",
                                          printable(key.str()), metric::names()));
     }
     std::erase_if(t.gates, [&](const metric::Gates& g) { return g.metric == m; });
@@ -327,6 +364,10 @@ std::string expand_placeholders(std::string_view text,
     i = end;
   }
   return out;
+}
+
+fs::path region_map(const fs::path& golden, std::string_view image) {
+  return golden.parent_path() / (std::string(image) + ".regions.png");
 }
 
 std::string render_ext(std::string_view image) { return image == "ao_float" ? ".exr" : ".png"; }

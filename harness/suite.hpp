@@ -16,6 +16,15 @@
 
 namespace aosuite::harness {
 
+// A tolerance class of a region map: the golden's <image>.regions.png beside it paints each
+// pixel with a class's colour (black: no class); the class's metric gates hold over its pixels,
+// and the tolerance's own metric gates over the unpainted ones.
+struct Region {
+  std::string name;
+  std::array<int, 3> color{};  // R, G, B, not all 0
+  std::vector<metric::Gates> gates;
+};
+
 // How far a render may stray from its golden and still pass: Resemble's gate, the metrics'
 // gates, or both (all must hold).
 struct Tolerance {
@@ -26,6 +35,7 @@ struct Tolerance {
   // Percentages and means over geometry pixels only (the G-buffer's depth says which), so sky
   // does not dilute them. Scene cases only.
   bool foreground_only = false;
+  std::vector<Region> regions;                  // empty: no region map is read
   resemble::Mode mode = resemble::Mode::kLess;  // any Resemble.js mode
   double max_mismatch_percent = 0;              // Resemble's rawMisMatchPercentage, inclusive
   int max_channel_delta = 255;                  // largest |new - golden| of any RGBA channel
@@ -37,6 +47,8 @@ struct Tolerance {
 // The images of a case that can be gated against goldens. ao_float is the AO term as float EXR
 // (ao_float.exr), rendered only for cases that gate it, by metric gates only.
 inline constexpr std::array<const char*, 4> kImageNames{"no_ao", "with_ao", "ao_only", "ao_float"};
+// The region map beside a golden: <image>.regions.png in its folder.
+std::filesystem::path region_map(const std::filesystem::path& golden, std::string_view image);
 // The file type of a render's image: ".exr" for ao_float, else ".png".
 std::string render_ext(std::string_view image);
 

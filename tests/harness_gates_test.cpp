@@ -172,25 +172,71 @@ rmse = { max = 0.001 }
   EXPECT_NE(r.out.find("rmse value"), std::string::npos) << r.out;
 }
 
+// Tolerance classes painted beside the golden: bless writes a blank map and keeps a painted
+// one; a painted region's strict gate catches what the loose base gate allows.
+TEST_F(HarnessGates, RegionMapsBesideTheGoldenPickTolerances) {
+  suite(
+      "flip = { max_mean = 1 }\n[case.tolerance.regions]\n"
+      "strict = { color = [255, 0, 0], flip = { max_mean = 0.001 } }\n",
+      R"(["with_ao"])", "spheres", "front");
+  ASSERT_EQ(aosuite("bless suites/g.toml").rc, 0);
+  const fs::path golden_dir = dir_ / "goldens" / "g" / "spheres-front-sao-64x36";
+  const fs::path map = golden_dir / "with_ao.regions.png";
+  ASSERT_TRUE(fs::is_regular_file(map));
+  cv::Mat painted = read_png_rgba8(map);
+  EXPECT_EQ(cv::countNonZero(painted.reshape(1) != cv::Scalar(0)), int(painted.total()))
+      << "blank: black and opaque, every pixel unpainted";
+  test::Outcome r = aosuite("check suites/g.toml", broken());
+  EXPECT_EQ(r.rc, 0) << "nothing painted: the loose gate holds everywhere\n" << r.out;
+
+  painted(cv::Rect(16, 10, 32, 20)).setTo(cv::Scalar(255, 0, 0, 255));
+  write_png_rgba8(map, painted);
+  r = aosuite("check suites/g.toml", broken());
+  EXPECT_EQ(r.rc, 1) << r.out << r.err;
+  EXPECT_NE(r.out.find("strict: flip mean"), std::string::npos) << r.out;
+  const nlohmann::json c = results().at("cases").at(0);
+  bool strict = false;
+  for (const auto& g : c.at("images").at(0).at("gates")) strict |= g.at("region") == "strict";
+  EXPECT_TRUE(strict);
+  EXPECT_TRUE(fs::is_regular_file(dir_ / "reports" / "g" / "cases" /
+                                  c.at("files").at("regions:with_ao").get<std::string>()));
+  // Blessing again keeps the painted map.
+  ASSERT_EQ(aosuite("bless suites/g.toml --force", broken()).rc, 0);
+  EXPECT_EQ(cv::norm(read_png_rgba8(map), painted, cv::NORM_INF), 0.0);
+
+  painted.at<cv::Vec4b>(0, 0) = {1, 2, 3, 255};
+  write_png_rgba8(map, painted);
+  r = aosuite("check suites/g.toml");
+  EXPECT_EQ(r.rc, 2) << r.out;
+  EXPECT_NE(r.out.find("no region's colour"), std::string::npos) << r.out;
+  fs::remove(map);
+  r = aosuite("check suites/g.toml");
+  EXPECT_EQ(r.rc, 2) << r.out;
+  EXPECT_NE(r.out.find("no region map"), std::string::npos) << r.out;
+}
+
 TEST_F(HarnessGates, BadGatesAreSuiteErrors) {
-  const std::pair<std::string, std::string> cases[] = {
-      {"rmse = { max = 0.01 }\n", R"(["ao_float", "nope"])"},
-      {"max_mismatch_percent = 1\n", R"(["ao_float"])"},
-      {"flip = { max_nope = 1 }\n", R"(["with_ao"])"},
-      {"flip = { }\n", R"(["with_ao"])"},
-      {"ssimm = { min = 0.9 }\n", R"(["with_ao"])"},
-      {"flip = { max = \"big\" }\n", R"(["with_ao"])"},
+  struct Bad {
+    std::string tolerance, images, message;
   };
-  const char* messages[] = {
-      "unknown image 'nope'",        "ao_float is judged by metric gates only",
-      "flip has no gate 'max_nope'", "flip sets no limit",
-      "unknown key 'ssimm'",         "g.toml:"};
-  for (std::size_t i = 0; i < std::size(cases); ++i) {
-    SCOPED_TRACE(cases[i].first);
-    suite(cases[i].first, cases[i].second);
+  const Bad cases[] = {
+      {"rmse = { max = 0.01 }\n", R"(["ao_float", "nope"])", "unknown image 'nope'"},
+      {"max_mismatch_percent = 1\n", R"(["ao_float"])", "ao_float is judged by metric gates only"},
+      {"flip = { max_nope = 1 }\n", R"(["with_ao"])", "flip has no gate 'max_nope'"},
+      {"flip = { }\n", R"(["with_ao"])", "flip sets no limit"},
+      {"ssimm = { min = 0.9 }\n", R"(["with_ao"])", "unknown key 'ssimm'"},
+      {"flip = { max = \"big\" }\n", R"(["with_ao"])", "g.toml:"},
+      {"[case.tolerance.regions]\nsky = { color = [0, 0, 0], flip = { max = 1 } }\n",
+       R"(["with_ao"])", "black marks unclassified"},
+      {"[case.tolerance.regions]\nsky = { color = [9, 9, 9] }\n", R"(["with_ao"])",
+       "region 'sky' has no metric gate"},
+  };
+  for (const Bad& bad : cases) {
+    SCOPED_TRACE(bad.tolerance);
+    suite(bad.tolerance, bad.images);
     const test::Outcome r = aosuite("check suites/g.toml");
     EXPECT_EQ(r.rc, 2) << r.out;
-    EXPECT_NE(r.err.find(messages[i]), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(bad.message), std::string::npos) << r.err;
     EXPECT_FALSE(fs::exists(dir_ / "reports" / "g" / "results.json"));
   }
 }

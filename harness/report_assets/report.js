@@ -136,7 +136,7 @@
       h += "<table class=gates><tr><th>gate</th><th>value</th><th>limit</th><th>margin</th></tr>" +
         v.gates.map((g) => `<tr class="${g.pass ? "PASS" : "FAIL"}"><td>${esc(g.gate)}</td><td class=num>${esc(g.value)}</td><td class=num>${esc(g.limit)}</td><td class=num>${esc(g.margin)}</td></tr>`).join("") + "</table>";
     }
-    h += `<div class=images>${fig(v.golden, "", "golden")}${fig(v.new, "", "new")}${fig(v.diff, "", "diff")}${fig(v.heat, "", "FLIP error (magma)")}`;
+    h += `<div class=images>${fig(v.golden, "", "golden")}${fig(v.new, "", "new")}${fig(v.diff, "", "diff")}${fig(v.heat, "", "FLIP error (magma)")}${fig(v.regions, "", "region map")}`;
     if (v.golden && v.new && !v.identical && !v.new.endsWith(".exr")) {
       h += `<figure><div class=swap><img class=golden src="${esc(url(v.golden))}" alt=golden><img class=new src="${esc(url(v.new))}" alt=new></div><figcaption>golden; hover for new</figcaption></figure>`;
       h += `<figure><div class=slider><img src="${esc(url(v.golden))}" alt=golden><img class=top src="${esc(url(v.new))}" alt=new><input type=range min=0 max=100 value=50 aria-label="new vs golden"></div><figcaption>slider: new (left) over golden</figcaption></figure>`;
