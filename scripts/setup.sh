@@ -8,7 +8,7 @@ PACKAGES=(
   g++ cmake make pkg-config
   libspng-dev libisal-dev libopencv-core-dev libfmt-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev libbenchmark-dev
-  libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri libglm-dev libopenimageio-dev
+  libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri libglm-dev libopenimageio-dev libopenexr-dev
   libtomlplusplus-dev libassimp-dev libxxhash-dev libembree-dev
   chromium
   # scikit-image 0.19: the SSIM oracle of the oracle-live test (tests/oracles/metric_oracle.py);
