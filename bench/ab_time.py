@@ -4,13 +4,15 @@
     bench/ab_time.py BIN_A,BIN_B[,...] ARGS... [--runs N]
 
 Each round runs every binary once with ARGS, in turn, so machine drift hits all alike; two
-warm-up rounds are dropped. Prints the median and minimum wall time per binary. Use it to
-measure one change (old and new binary side by side); peers-bench compares against peers.
+warm-up rounds are dropped (bench/interleaved.py, which times any commands). Prints the median
+and minimum wall time per binary. Use it to measure one change (old and new binary side by
+side); peers-bench compares against peers.
 """
+import shlex
 import statistics
-import subprocess
 import sys
-import time
+
+from interleaved import time_interleaved
 
 
 def main() -> int:
@@ -24,14 +26,8 @@ def main() -> int:
         print(__doc__, file=sys.stderr)
         return 2
     binaries, rest = args[0].split(","), args[1:]
-    times = [[] for _ in binaries]
-    for round_ in range(runs + 2):
-        for b, samples in zip(binaries, times):
-            start = time.perf_counter()
-            subprocess.run([b, *rest], stdout=subprocess.DEVNULL, check=False)
-            if round_ >= 2:
-                samples.append((time.perf_counter() - start) * 1000)
-    for b, samples in zip(binaries, times):
+    commands = [shlex.join([b, *rest]) for b in binaries]
+    for b, samples in zip(binaries, time_interleaved(commands, runs)):
         print(f"{b}: median {statistics.median(samples):.2f} ms, min {min(samples):.2f} ms")
     return 0
 

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
+#include "broken_shaders.hpp"
 #include "compare/opencv.hpp"
 #include "png_fixture.hpp"
 #include "process.hpp"
@@ -38,13 +39,7 @@ max_mismatch_percent = 0.5
 [[case]]
 scene = "corner"
 )";
-    // A copy of the shaders with SAO twice as dark: a deliberate regression.
-    fs::copy(fs::path(AOSUITE_SOURCE_DIR) / "renderer" / "shaders", dir_ / "broken");
-    std::string sao = read_text(dir_ / "broken" / "sao.frag");
-    const std::string term = "1.0 - sum * u_intensity";
-    ASSERT_NE(sao.find(term), std::string::npos) << "sao.frag changed; update this test";
-    sao.replace(sao.find(term), term.size(), "1.0 - 2.0 * sum * u_intensity");
-    std::ofstream(dir_ / "broken" / "sao.frag") << sao;
+    test::write_broken_shaders(dir_ / "broken");
   }
   test::Outcome aosuite(const std::string& args, const std::string& env = "") {
     return test::run_shell(

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "broken_shaders.hpp"
 #include "compare/opencv.hpp"
 #include "png_fixture.hpp"
 #include "process.hpp"
@@ -21,13 +22,7 @@ class HarnessGates : public ::testing::Test {
  protected:
   void SetUp() override {
     fs::create_directories(dir_ / "suites");
-    // A copy of the shaders with SAO twice as dark: a deliberate regression.
-    fs::copy(fs::path(AOSUITE_SOURCE_DIR) / "renderer" / "shaders", dir_ / "broken");
-    std::string sao = read_text(dir_ / "broken" / "sao.frag");
-    const std::string term = "1.0 - sum * u_intensity";
-    ASSERT_NE(sao.find(term), std::string::npos) << "sao.frag changed; update this test";
-    sao.replace(sao.find(term), term.size(), "1.0 - 2.0 * sum * u_intensity");
-    std::ofstream(dir_ / "broken" / "sao.frag") << sao;
+    test::write_broken_shaders(dir_ / "broken");
   }
   void suite(const std::string& tolerance, const std::string& images,
              const std::string& scene = "corner", const std::string& view = "inside") {
