@@ -1,11 +1,13 @@
 // The perceptual metric kernels at 1080p and 4K, in-process (images already in memory):
-// FLIP LDR (8-bit sRGB), FLIP HDR (float RGB, ACES, automatic exposures), SSIM on 8-bit RGB.
+// FLIP LDR (8-bit sRGB), FLIP HDR (float RGB, ACES, automatic exposures), SSIM on 8-bit RGB;
+// and every registered metric through the seam (compare/metric.hpp), BM_Metric/<name>.
 // The pairs are tests/metric_pairs.hpp's bench_pair; `metric_oracle_inputs --bench DIR`
 // writes the same pairs as files for timing the reference tools (bench/README.md).
 #include <benchmark/benchmark.h>
 
 #include <map>
 
+#include "compare/metric.hpp"
 #include "compare/metrics_cv.hpp"
 #include "tests/metric_pairs.hpp"
 
@@ -65,10 +67,43 @@ void BM_SsimRgb(benchmark::State& state) {
   set_pixels(state, p.a);
 }
 
+aosuite::Picture picture_of(const cv::Mat& rgba) {
+  aosuite::Picture p;
+  p.rgba = aosuite::RgbaImage(rgba.cols, rgba.rows);
+  std::copy_n(rgba.ptr<unsigned char>(), rgba.total() * 4, p.rgba.data());
+  return p;
+}
+
+// One registered metric on the 8-bit pair, as compare --metric and the harness call it.
+void BM_Metric(benchmark::State& state, const aosuite::metric::Metric* m) {
+  const auto& p = pair_for(static_cast<int>(state.range(0)), false);
+  const aosuite::Picture a = picture_of(p.a), b = picture_of(p.b);
+  double value = 0;
+  for (auto _ : state) {
+    value = aosuite::metric::measure(*m, a, b).value(m->primary);
+    benchmark::ClobberMemory();
+  }
+  state.counters[std::string(m->primary)] = value;
+  set_pixels(state, p.a);
+}
+
 BENCHMARK(BM_FlipLdr)->Arg(1080)->Arg(2160)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_FlipHdr)->Arg(1080)->Arg(2160)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_SsimRgb)->Arg(1080)->Arg(2160)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+  for (const aosuite::metric::Metric* m : aosuite::metric::all()) {
+    benchmark::RegisterBenchmark(("BM_Metric/" + std::string(m->name)).c_str(), BM_Metric, m)
+        ->Arg(1080)
+        ->Arg(2160)
+        ->Unit(benchmark::kMillisecond)
+        ->UseRealTime();
+  }
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

@@ -66,6 +66,12 @@ void print_stats(const char* name, const ref::ErrorStats& s) {
              s.pixels, s.rmse, s.noise_floor, s.mae, s.bias, s.psnr, s.ssim);
 }
 
+std::string frame_text(const ref::FrameError& e) {
+  std::string out;
+  for (const metric::Value& v : e.values) out += fmt::format(" {} {:.4f}", v.key, v.value);
+  return out;
+}
+
 int run_error(const ErrorArgs& a) {
   const rd::Scene scene = rd::load_scene(a.c.scene);
   const rd::View& view = rd::find_view(scene, a.c.view);
@@ -104,7 +110,7 @@ int run_error(const ErrorArgs& a) {
                       {"cached", cache.last_was_cached()},
                       {"seconds", cache.last_seconds()}};
     j["error"] = to_json(r);
-    j["frame"] = {{"flip_mean", frame.flip_mean}, {"ssim", frame.ssim}};
+    j["frame"] = to_json(frame);
     fmt::print("{}\n", j.dump(2));
     return kExitSame;
   }
@@ -117,10 +123,8 @@ int run_error(const ErrorArgs& a) {
   print_stats("all", r.all);
   print_stats("edge", r.edge);
   print_stats("interior", r.interior);
-  fmt::print(
-      "  final image against the same frame shaded with the reference: FLIP mean {:.4f}, "
-      "SSIM {:.4f}\n",
-      frame.flip_mean, frame.ssim);
+  fmt::print("  final image against the same frame shaded with the reference:{}\n",
+             frame_text(frame));
   return kExitSame;
 }
 

@@ -21,7 +21,7 @@ nlohmann::ordered_json row_json(const Row& r, bool unbounded) {
                            {"params", r.params},
                            {"ao_gl_ms", r.gl_ms},
                            {"error", to_json(r.error)},
-                           {"frame", {{"flip_mean", r.frame.flip_mean}, {"ssim", r.frame.ssim}}}};
+                           {"frame", to_json(r.frame)}};
   if (unbounded) j["error_unbounded"] = to_json(r.unbounded);
   return j;
 }
@@ -36,7 +36,7 @@ Row row_from_json(const nlohmann::json& j) {
   r.params = j.at("params").get<std::map<std::string, std::string>>();
   r.gl_ms = j.at("ao_gl_ms");
   r.error = error_report_from_json(j.at("error"));
-  r.frame = {j.at("frame").at("flip_mean"), j.at("frame").at("ssim")};
+  r.frame = ref::frame_error_from_json(j.at("frame"));
   if (j.contains("error_unbounded")) r.unbounded = error_stats_from_json(j.at("error_unbounded"));
   return r;
 }

@@ -53,8 +53,31 @@ FrameError frame_error(const cv::Mat& no_ao, const cv::Mat& estimate, const cv::
   const Picture truth = picture_of(shade(no_ao, reference, depth), "reference frame");
   const Picture test = picture_of(shade(no_ao, estimate, depth), "technique frame");
   FrameError e;
-  e.flip_mean = metric::measure(metric::find("flip"), truth, test).value("mean");
-  e.ssim = metric::measure(metric::find("ssim"), truth, test).value("mean");
+  for (const metric::Metric* m : metric::all()) {
+    e.values.push_back({std::string(m->name), metric::measure(*m, truth, test).value(m->primary)});
+  }
+  return e;
+}
+
+double FrameError::value(std::string_view metric) const {
+  for (const metric::Value& v : values)
+    if (v.key == metric) return v.value;
+  throw std::out_of_range("no frame error for " + std::string(metric));
+}
+
+nlohmann::ordered_json to_json(const FrameError& e) {
+  nlohmann::ordered_json j = nlohmann::ordered_json::object();
+  for (const metric::Value& v : e.values)
+    j[v.key] = std::isfinite(v.value) ? nlohmann::ordered_json(v.value) : nullptr;
+  return j;
+}
+
+FrameError frame_error_from_json(const nlohmann::json& j) {
+  FrameError e;
+  for (const metric::Metric* m : metric::all()) {
+    const nlohmann::json& v = j.at(std::string(m->name));
+    e.values.push_back({std::string(m->name), v.is_null() ? HUGE_VAL : v.get<double>()});
+  }
   return e;
 }
 

@@ -108,8 +108,8 @@ TEST(SweepCli, ErrorPrintsJsonAndWritesTheReference) {
   const auto j = nlohmann::json::parse(o.out);
   EXPECT_EQ(j["reference"]["radius"], 10.0);  // SAO's default radius
   EXPECT_GT(j["error"]["all"]["pixels"].get<int>(), 0);
-  EXPECT_GT(j["frame"]["flip_mean"].get<double>(), 0.0);
-  EXPECT_LT(j["frame"]["flip_mean"].get<double>(), 1.0);
+  EXPECT_GT(j["frame"]["flip"].get<double>(), 0.0);
+  EXPECT_LT(j["frame"]["flip"].get<double>(), 1.0);
   EXPECT_GT(j["frame"]["ssim"].get<double>(), 0.0);
   EXPECT_LT(j["frame"]["ssim"].get<double>(), 1.0);
   const std::string stem =
