@@ -8,9 +8,9 @@
 #include <filesystem>
 
 #include "bench/bench_main.hpp"
-#include "renderer/pmi_item_buffer.hpp"
+#include "renderer/pmi/pmi_item_buffer.hpp"
+#include "renderer/pmi/viewpoint_sphere.hpp"
 #include "renderer/renderer.hpp"
-#include "renderer/viewpoint_sphere.hpp"
 
 namespace {
 

@@ -8,7 +8,7 @@
 
 #include "bench/bench_main.hpp"
 #include "renderer/renderer.hpp"
-#include "renderer/scene.hpp"
+#include "renderer/scene/scene.hpp"
 
 namespace {
 

@@ -16,7 +16,7 @@
 #include "reference/frame_error.hpp"
 #include "reference/reference_cache.hpp"
 #include "renderer/renderer.hpp"
-#include "renderer/scene_file.hpp"
+#include "renderer/scene/scene_file.hpp"
 
 namespace aosuite::cli {
 namespace {

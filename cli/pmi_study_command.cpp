@@ -21,7 +21,7 @@
 #include "cli/pmi_vertex_ao.hpp"
 #include "compare/opencv.hpp"
 #include "renderer/renderer.hpp"
-#include "renderer/scene_file.hpp"
+#include "renderer/scene/scene_file.hpp"
 
 namespace aosuite::cli {
 namespace {

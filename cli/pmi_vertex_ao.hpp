@@ -5,7 +5,7 @@
 
 #include <vector>
 
-#include "renderer/pmi_channel.hpp"
+#include "renderer/pmi/pmi_channel.hpp"
 
 namespace aosuite::cli {
 

@@ -10,8 +10,8 @@
 #include "cli/gl_command_util.hpp"
 #include "compare/opencv.hpp"
 #include "renderer/renderer.hpp"
-#include "renderer/scene.hpp"
-#include "renderer/scene_file.hpp"
+#include "renderer/scene/scene.hpp"
+#include "renderer/scene/scene_file.hpp"
 
 namespace aosuite::cli {
 namespace {

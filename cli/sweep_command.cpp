@@ -23,7 +23,7 @@
 #include "reference/reference_cache.hpp"
 #include "renderer/params.hpp"
 #include "renderer/renderer.hpp"
-#include "renderer/scene_file.hpp"
+#include "renderer/scene/scene_file.hpp"
 
 namespace aosuite::cli {
 namespace {

@@ -5,7 +5,7 @@
 
 #include "compare/image_io.hpp"
 #include "renderer/params.hpp"
-#include "renderer/toml_reader.hpp"
+#include "renderer/scene/toml_reader.hpp"
 
 namespace aosuite::cli {
 namespace {

@@ -11,9 +11,9 @@
 
 #include "cli/commands.hpp"
 #include "compare/opencv.hpp"
+#include "renderer/pmi/viewpoint_sphere.hpp"
 #include "renderer/renderer.hpp"
-#include "renderer/scene_file.hpp"
-#include "renderer/viewpoint_sphere.hpp"
+#include "renderer/scene/scene_file.hpp"
 
 namespace aosuite::cli {
 namespace {

@@ -7,7 +7,7 @@
 
 #include "renderer/content_hash.hpp"
 #include "renderer/params.hpp"
-#include "renderer/shader_library.hpp"
+#include "renderer/passes/shader_library.hpp"
 
 namespace aosuite::harness {
 namespace {

@@ -9,8 +9,8 @@
 
 #include "harness/escape.hpp"
 #include "renderer/params.hpp"
-#include "renderer/scene_file.hpp"
-#include "renderer/toml_reader.hpp"
+#include "renderer/scene/scene_file.hpp"
+#include "renderer/scene/toml_reader.hpp"
 
 namespace aosuite::harness {
 namespace {

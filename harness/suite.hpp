@@ -11,7 +11,7 @@
 
 #include "compare/metric.hpp"
 #include "compare/resemble.hpp"
-#include "renderer/scene.hpp"
+#include "renderer/scene/scene.hpp"
 #include "renderer/technique.hpp"
 
 namespace aosuite::harness {

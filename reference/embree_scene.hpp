@@ -3,7 +3,7 @@
 
 #include <embree3/rtcore.h>
 
-#include "renderer/scene.hpp"
+#include "renderer/scene/scene.hpp"
 
 namespace aosuite::reference {
 

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "renderer/gl/gl_objects.hpp"
-#include "renderer/scene.hpp"
+#include "renderer/scene/scene.hpp"
 
 namespace aosuite::renderer {
 

@@ -5,16 +5,16 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "renderer/ao_pass.hpp"
-#include "renderer/blend_pass.hpp"
-#include "renderer/blur_pass.hpp"
-#include "renderer/gbuffer_pass.hpp"
 #include "renderer/gl/gl_context.hpp"
 #include "renderer/params.hpp"
-#include "renderer/pmi_cache.hpp"
-#include "renderer/pmi_pass.hpp"
-#include "renderer/view_check.hpp"
-#include "renderer/viewpoint_sphere.hpp"
+#include "renderer/passes/ao_pass.hpp"
+#include "renderer/passes/blend_pass.hpp"
+#include "renderer/passes/blur_pass.hpp"
+#include "renderer/passes/gbuffer_pass.hpp"
+#include "renderer/pmi/pmi_cache.hpp"
+#include "renderer/pmi/pmi_pass.hpp"
+#include "renderer/pmi/viewpoint_sphere.hpp"
+#include "renderer/scene/view_check.hpp"
 
 namespace aosuite::renderer {
 

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "renderer/frame.hpp"
-#include "renderer/pmi_channel.hpp"
+#include "renderer/pmi/pmi_channel.hpp"
 #include "renderer/technique.hpp"
 
 namespace aosuite::renderer {

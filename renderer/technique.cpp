@@ -3,7 +3,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "renderer/ao_pass.hpp"
+#include "renderer/passes/ao_pass.hpp"
 
 namespace aosuite::renderer {
 

@@ -12,7 +12,7 @@
 namespace aosuite::renderer {
 
 // kPmi: viewpoint-based AO (González, Sbert & Feixas 2008), per polygon in object space
-// (renderer/pmi_channel.hpp), not a screen-space estimator.
+// (renderer/pmi/pmi_channel.hpp), not a screen-space estimator.
 enum class Technique { kAlchemy, kSao, kMssao, kUe4, kPmi, kGtao };
 
 enum class Blur { kNone, kGaussian, kBilateral };

@@ -13,7 +13,8 @@
 namespace aosuite::test {
 
 inline void write_broken_shaders(const std::filesystem::path& dir) {
-  std::filesystem::copy(std::filesystem::path(AOSUITE_SOURCE_DIR) / "renderer" / "shaders", dir);
+  std::filesystem::copy(
+      std::filesystem::path(AOSUITE_SOURCE_DIR) / "renderer" / "passes" / "shaders", dir);
   std::string sao = read_text(dir / "sao.frag");
   const std::string term = "1.0 - sum * u_intensity";
   ASSERT_NE(sao.find(term), std::string::npos) << "sao.frag changed; update this test";

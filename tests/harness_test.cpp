@@ -16,7 +16,7 @@
 #include "harness/suite.hpp"
 #include "png_fixture.hpp"
 #include "renderer/params.hpp"
-#include "renderer/scene.hpp"
+#include "renderer/scene/scene.hpp"
 
 namespace aosuite::harness {
 namespace {

@@ -8,10 +8,10 @@
 #include <random>
 
 #include "renderer/params.hpp"
-#include "renderer/pmi_channel.hpp"
+#include "renderer/pmi/pmi_channel.hpp"
+#include "renderer/pmi/viewpoint_sphere.hpp"
 #include "renderer/renderer.hpp"
-#include "renderer/scene.hpp"
-#include "renderer/viewpoint_sphere.hpp"
+#include "renderer/scene/scene.hpp"
 
 namespace aosuite::renderer {
 namespace {

@@ -9,9 +9,9 @@
 #include <cmath>
 #include <thread>
 
-#include "renderer/ao_uniforms.hpp"
 #include "renderer/params.hpp"
-#include "renderer/scene.hpp"
+#include "renderer/passes/ao_uniforms.hpp"
+#include "renderer/scene/scene.hpp"
 
 namespace aosuite::renderer {
 namespace {

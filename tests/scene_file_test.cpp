@@ -1,7 +1,7 @@
 // Mesh files and scene files as users hand them over: every supported format, broken files
 // refused with the file named (and the line for text), placements that do what they say.
 // No OpenGL: nothing here renders.
-#include "renderer/scene_file.hpp"
+#include "renderer/scene/scene_file.hpp"
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
@@ -20,8 +20,8 @@
 #include "compare/printable.hpp"
 #include "png_fixture.hpp"
 #include "process.hpp"
-#include "renderer/mesh_io.hpp"
-#include "renderer/view_check.hpp"
+#include "renderer/scene/mesh_io.hpp"
+#include "renderer/scene/view_check.hpp"
 
 namespace aosuite::renderer {
 namespace {

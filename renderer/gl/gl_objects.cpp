@@ -5,7 +5,7 @@
 #include <string_view>
 #include <vector>
 
-#include "renderer/shader_library.hpp"
+#include "renderer/passes/shader_library.hpp"
 
 namespace aosuite::renderer {
 

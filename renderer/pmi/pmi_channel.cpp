@@ -1,12 +1,12 @@
-#include "renderer/pmi_channel.hpp"
+#include "renderer/pmi/pmi_channel.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <numeric>
 #include <stdexcept>
 
-#include "renderer/pmi_item_buffer.hpp"
-#include "renderer/viewpoint_sphere.hpp"
+#include "renderer/pmi/pmi_item_buffer.hpp"
+#include "renderer/pmi/viewpoint_sphere.hpp"
 
 namespace aosuite::renderer {
 

@@ -5,8 +5,8 @@
 #include <algorithm>
 #include <array>
 
-#include "renderer/ao_pass.hpp"
-#include "renderer/ao_uniforms.hpp"
+#include "renderer/passes/ao_pass.hpp"
+#include "renderer/passes/ao_uniforms.hpp"
 
 namespace aosuite::renderer {
 namespace {

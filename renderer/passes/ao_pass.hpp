@@ -21,7 +21,7 @@ class AoPass {
 std::unique_ptr<AoPass> make_ao_pass(Technique technique);
 
 // A technique that is one full-screen draw over the G-buffer's depth and normals with
-// `fragment` (a file in renderer/shaders/), which reads shaders/ao_uniforms.glsl's block.
+// `fragment` (a file in renderer/passes/shaders/), which reads shaders/ao_uniforms.glsl's block.
 std::unique_ptr<AoPass> make_gbuffer_ao_pass(const char* fragment);
 
 // SAO's discrepancy-minimising spiral turns for s samples (G3D's table), 7 beyond it.

@@ -1,4 +1,4 @@
-#include "renderer/blend_pass.hpp"
+#include "renderer/passes/blend_pass.hpp"
 
 namespace aosuite::renderer {
 

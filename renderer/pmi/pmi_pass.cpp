@@ -1,4 +1,4 @@
-#include "renderer/pmi_pass.hpp"
+#include "renderer/pmi/pmi_pass.hpp"
 
 #include <stdexcept>
 #include <vector>

@@ -1,4 +1,4 @@
-#include "renderer/scene_file.hpp"
+#include "renderer/scene/scene_file.hpp"
 
 #include <fmt/format.h>
 #include <toml++/toml.h>
@@ -14,9 +14,9 @@
 
 #include "compare/image_io.hpp"
 #include "compare/printable.hpp"
-#include "renderer/mesh_io.hpp"
-#include "renderer/toml_reader.hpp"
-#include "renderer/view_check.hpp"
+#include "renderer/scene/mesh_io.hpp"
+#include "renderer/scene/toml_reader.hpp"
+#include "renderer/scene/view_check.hpp"
 
 namespace aosuite::renderer {
 namespace {

@@ -2,8 +2,8 @@
 // uses depth only (no G-buffer normals).
 #include <algorithm>
 
-#include "renderer/ao_pass.hpp"
-#include "renderer/ao_uniforms.hpp"
+#include "renderer/passes/ao_pass.hpp"
+#include "renderer/passes/ao_uniforms.hpp"
 
 namespace aosuite::renderer {
 namespace {

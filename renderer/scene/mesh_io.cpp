@@ -1,4 +1,4 @@
-#include "renderer/mesh_io.hpp"
+#include "renderer/scene/mesh_io.hpp"
 
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
@@ -10,7 +10,7 @@
 
 #include "compare/image_io.hpp"
 #include "compare/printable.hpp"
-#include "renderer/mesh_check.hpp"
+#include "renderer/scene/mesh_check.hpp"
 
 namespace aosuite::renderer {
 namespace {

@@ -1,4 +1,4 @@
-#include "renderer/scene.hpp"
+#include "renderer/scene/scene.hpp"
 
 #include <fmt/format.h>
 
@@ -11,7 +11,7 @@
 #include <stdexcept>
 
 #include "compare/image_io.hpp"
-#include "renderer/mesh_io.hpp"
+#include "renderer/scene/mesh_io.hpp"
 
 #ifndef AOSUITE_ASSET_DIR
 #error "AOSUITE_ASSET_DIR (the repository's .cache/assets) must be defined by the build"

@@ -1,4 +1,4 @@
-#include "renderer/mesh_check.hpp"
+#include "renderer/scene/mesh_check.hpp"
 
 #include <fmt/format.h>
 

@@ -6,7 +6,7 @@
 #include <string>
 #include <string_view>
 
-#include "renderer/scene.hpp"
+#include "renderer/scene/scene.hpp"
 
 namespace aosuite::renderer {
 

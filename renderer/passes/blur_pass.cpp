@@ -1,4 +1,4 @@
-#include "renderer/blur_pass.hpp"
+#include "renderer/passes/blur_pass.hpp"
 
 namespace aosuite::renderer {
 

@@ -1,4 +1,4 @@
-#include "renderer/gbuffer_pass.hpp"
+#include "renderer/passes/gbuffer_pass.hpp"
 
 #include <cmath>
 #include <vector>

@@ -1,4 +1,4 @@
-#include "renderer/shader_library.hpp"
+#include "renderer/passes/shader_library.hpp"
 
 #include <cstdlib>
 #include <filesystem>

@@ -1,4 +1,4 @@
-#include "renderer/viewpoint_sphere.hpp"
+#include "renderer/pmi/viewpoint_sphere.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "renderer/pmi_cache.hpp"
+#include "renderer/pmi/pmi_cache.hpp"
 
 #include <algorithm>
 

@@ -3,7 +3,7 @@
 
 #include <filesystem>
 
-#include "renderer/scene.hpp"
+#include "renderer/scene/scene.hpp"
 
 namespace aosuite::renderer {
 

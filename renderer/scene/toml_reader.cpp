@@ -1,4 +1,4 @@
-#include "renderer/toml_reader.hpp"
+#include "renderer/scene/toml_reader.hpp"
 
 #include <fmt/format.h>
 

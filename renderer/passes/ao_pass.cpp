@@ -1,9 +1,9 @@
-#include "renderer/ao_pass.hpp"
+#include "renderer/passes/ao_pass.hpp"
 
 #include <array>
 #include <stdexcept>
 
-#include "renderer/ao_uniforms.hpp"
+#include "renderer/passes/ao_uniforms.hpp"
 
 namespace aosuite::renderer {
 

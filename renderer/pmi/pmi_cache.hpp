@@ -7,7 +7,7 @@
 #include <memory>
 #include <tuple>
 
-#include "renderer/pmi_channel.hpp"
+#include "renderer/pmi/pmi_channel.hpp"
 
 namespace aosuite::renderer {
 

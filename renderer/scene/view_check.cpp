@@ -1,4 +1,4 @@
-#include "renderer/view_check.hpp"
+#include "renderer/scene/view_check.hpp"
 
 #include <cmath>
 #include <limits>

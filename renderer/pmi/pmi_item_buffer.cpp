@@ -1,4 +1,4 @@
-#include "renderer/pmi_item_buffer.hpp"
+#include "renderer/pmi/pmi_item_buffer.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -3,7 +3,7 @@
 #pragma once
 
 #include "renderer/frame.hpp"
-#include "renderer/pmi_channel.hpp"
+#include "renderer/pmi/pmi_channel.hpp"
 
 namespace aosuite::renderer {
 

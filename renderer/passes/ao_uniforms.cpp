@@ -1,6 +1,6 @@
-#include "renderer/ao_uniforms.hpp"
+#include "renderer/passes/ao_uniforms.hpp"
 
-#include "renderer/ao_pass.hpp"
+#include "renderer/passes/ao_pass.hpp"
 
 namespace aosuite::renderer {
 

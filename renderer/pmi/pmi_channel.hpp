@@ -16,7 +16,7 @@
 #include <span>
 #include <vector>
 
-#include "renderer/scene.hpp"
+#include "renderer/scene/scene.hpp"
 #include "renderer/technique.hpp"
 
 namespace aosuite::renderer {

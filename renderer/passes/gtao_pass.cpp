@@ -1,6 +1,6 @@
 // GTAO's pass: one full-screen draw of gtao.frag; its slices, steps and falloff reach the
 // shader through the AO uniform block (ao_uniforms.hpp).
-#include "renderer/ao_pass.hpp"
+#include "renderer/passes/ao_pass.hpp"
 
 namespace aosuite::renderer {
 
