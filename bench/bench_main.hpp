@@ -5,7 +5,7 @@
 
 #include <benchmark/benchmark.h>
 
-#include "renderer/huge_page_malloc.hpp"
+#include "common/huge_page_malloc.hpp"
 #include "renderer/renderer.hpp"
 
 namespace aosuite::bench {

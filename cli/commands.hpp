@@ -6,7 +6,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "compare/printable.hpp"
+#include "common/printable.hpp"
 
 namespace aosuite::cli {
 

@@ -8,8 +8,8 @@
 
 #include "cli/commands.hpp"
 #include "cli/usage_error.hpp"
-#include "compare/sibling_library.hpp"
-#include "renderer/huge_page_malloc.hpp"
+#include "common/huge_page_malloc.hpp"
+#include "common/sibling_library.hpp"
 
 namespace {
 

@@ -217,8 +217,7 @@ int run_study(const StudyArgs& a) {
     write_png_rgba8(dir / (stem + "_ao_only.png"), img.ao_only);
     if (t == rd::Technique::kPmi) write_png_rgba8(dir / (stem + "_with_ao.png"), img.with_ao);
   }
-  write_file_atomic(dir / "pmi_study.md",
-                    {reinterpret_cast<const unsigned char*>(md.data()), md.size()});
+  write_text(dir / "pmi_study.md", md);
   fmt::print("{}", md);
   return kExitSame;
 }

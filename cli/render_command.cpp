@@ -61,8 +61,7 @@ int run_render(const RenderArgs& a) {
   for (const auto& [pass, times] : gpu) j["median_ms"][pass] = median(times);
   j["median_ms"]["frame_wall"] = median(frame);
   const std::string text = j.dump(2) + "\n";
-  write_file_atomic(dir / (stem + ".json"),
-                    {reinterpret_cast<const unsigned char*>(text.data()), text.size()});
+  write_text(dir / (stem + ".json"), text);
   fmt::print("{}: {}\n", (dir / stem).string(), j["median_ms"].dump());
   return kExitSame;
 }

@@ -276,14 +276,10 @@ void write_plots(const std::vector<Row>& rows, const fs::path& dir, const std::s
                     res.second),
         "AO passes, median GPU ms (log scale)",
         unbounded ? "RMSE vs ray-traced AO (unbounded)" : "RMSE vs ray-traced AO (radius r)");
-    write_file_atomic(dir / fmt::format("sweep_{}x{}{}.svg", res.first, res.second,
-                                        unbounded ? "_unbounded" : ""),
-                      {reinterpret_cast<const unsigned char*>(svg.data()), svg.size()});
+    write_text(dir / fmt::format("sweep_{}x{}{}.svg", res.first, res.second,
+                                 unbounded ? "_unbounded" : ""),
+               svg);
   }
-}
-
-void write_text(const fs::path& path, const std::string& text) {
-  write_file_atomic(path, {reinterpret_cast<const unsigned char*>(text.data()), text.size()});
 }
 
 // "1280x720" -> {1280, 720}; throws std::invalid_argument otherwise.

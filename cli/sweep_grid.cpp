@@ -3,9 +3,9 @@
 #include <fmt/format.h>
 #include <toml++/toml.h>
 
+#include "common/toml_reader.hpp"
 #include "compare/image_io.hpp"
 #include "renderer/params.hpp"
-#include "renderer/scene/toml_reader.hpp"
 
 namespace aosuite::cli {
 namespace {

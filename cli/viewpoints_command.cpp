@@ -64,10 +64,6 @@ rd::Scene coloured_sphere(const std::vector<glm::vec3>& directions,
   return s;
 }
 
-void write_text(const fs::path& path, const std::string& text) {
-  write_file_atomic(path, {reinterpret_cast<const unsigned char*>(text.data()), text.size()});
-}
-
 // Colour AO (the paper's eq. 12) per vertex as an ASCII PLY with vertex colours.
 void write_colour_ao(const fs::path& path, const rd::PmiObject& object,
                      const rd::PmiChannel& channel) {

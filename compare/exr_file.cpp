@@ -5,8 +5,8 @@
 #include <algorithm>
 #include <system_error>
 
+#include "common/sibling_library.hpp"
 #include "compare/image_io.hpp"
-#include "compare/sibling_library.hpp"
 
 namespace aosuite {
 namespace {

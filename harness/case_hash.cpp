@@ -5,7 +5,7 @@
 
 #include <span>
 
-#include "renderer/content_hash.hpp"
+#include "common/content_hash.hpp"
 #include "renderer/params.hpp"
 #include "renderer/passes/shader_library.hpp"
 

@@ -8,7 +8,7 @@
 #include <string>
 #include <string_view>
 
-#include "compare/printable.hpp"
+#include "common/printable.hpp"
 
 namespace aosuite::harness {
 

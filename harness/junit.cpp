@@ -40,7 +40,7 @@ void write_junit(const RunResults& run, const std::filesystem::path& file) {
       "</testsuites>\n",
       escape_markup(run.suite), run.cases.size(), n.fail + n.fresh, n.error, seconds, cases);
   if (file.has_parent_path()) std::filesystem::create_directories(file.parent_path());
-  write_file_atomic(file, {reinterpret_cast<const unsigned char*>(xml.data()), xml.size()});
+  write_text(file, xml);
 }
 
 }  // namespace aosuite::harness

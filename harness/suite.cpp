@@ -7,10 +7,10 @@
 #include <set>
 #include <stdexcept>
 
+#include "common/toml_reader.hpp"
 #include "harness/escape.hpp"
 #include "renderer/params.hpp"
 #include "renderer/scene/scene_file.hpp"
-#include "renderer/scene/toml_reader.hpp"
 
 namespace aosuite::harness {
 namespace {

@@ -9,8 +9,8 @@
 #include <stdexcept>
 #include <vector>
 
+#include "common/content_hash.hpp"
 #include "compare/image_io.hpp"
-#include "renderer/content_hash.hpp"
 
 namespace aosuite::reference {
 namespace {

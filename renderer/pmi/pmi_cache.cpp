@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "renderer/content_hash.hpp"
+#include "common/content_hash.hpp"
 
 namespace aosuite::renderer {
 

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "common/printable.hpp"
 #include "compare/image_io.hpp"
-#include "compare/printable.hpp"
 
 namespace aosuite::renderer {
 namespace {

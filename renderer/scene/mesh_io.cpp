@@ -8,8 +8,8 @@
 #include <assimp/Importer.hpp>
 #include <cmath>
 
+#include "common/printable.hpp"
 #include "compare/image_io.hpp"
-#include "compare/printable.hpp"
 #include "renderer/scene/mesh_check.hpp"
 
 namespace aosuite::renderer {

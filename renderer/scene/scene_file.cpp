@@ -12,10 +12,10 @@
 #include <stdexcept>
 #include <string>
 
+#include "common/printable.hpp"
+#include "common/toml_reader.hpp"
 #include "compare/image_io.hpp"
-#include "compare/printable.hpp"
 #include "renderer/scene/mesh_io.hpp"
-#include "renderer/scene/toml_reader.hpp"
 #include "renderer/scene/view_check.hpp"
 
 namespace aosuite::renderer {

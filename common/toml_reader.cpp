@@ -1,4 +1,4 @@
-#include "renderer/scene/toml_reader.hpp"
+#include "common/toml_reader.hpp"
 
 #include <fmt/format.h>
 
@@ -7,8 +7,8 @@
 #include <cmath>
 #include <limits>
 
+#include "common/printable.hpp"
 #include "compare/image_io.hpp"
-#include "compare/printable.hpp"
 
 namespace aosuite {
 

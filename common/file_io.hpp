@@ -1,0 +1,53 @@
+// Files as the whole project reads and writes them: errors that name the file, reads that
+// work on pipes and FIFOs, memory-mapped inputs, and writes that readers only ever see whole.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <span>
+#include <stdexcept>
+#include <string_view>
+#include <vector>
+
+namespace aosuite {
+
+// An error about one file. what() is a single line that names the file and the problem.
+class FileError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// How long reading a named FIFO waits for its first byte before giving up (no writer?);
+// AOSUITE_FIFO_WAIT_MS overrides it.
+inline constexpr int kFifoWaitMs = 5000;
+
+// The whole file: regular files, pipes, FIFOs and devices alike, read to end-of-file.
+// Throws FileError when it is over max_bytes.
+std::vector<unsigned char> read_file(const std::filesystem::path& path,
+                                     std::uint64_t max_bytes = UINT64_MAX);
+
+// A file's bytes mapped read-only: no copy and no zeroed buffer, which for image-sized files
+// is measurable in a command that runs for a few tens of milliseconds.
+// Pipes, FIFOs and devices are read to end-of-file instead (read_file), up to max_bytes.
+class MappedFile {
+ public:
+  explicit MappedFile(const std::filesystem::path& path, std::uint64_t max_bytes = UINT64_MAX);
+  ~MappedFile();
+  MappedFile(const MappedFile&) = delete;
+  MappedFile& operator=(const MappedFile&) = delete;
+  std::span<const unsigned char> bytes() const { return {data_, size_}; }
+
+ private:
+  const unsigned char* data_ = nullptr;
+  std::size_t size_ = 0;
+  std::vector<unsigned char> fallback_;  // for what cannot be mapped (pipes, empty files)
+  bool mapped_ = true;
+};
+
+// Writes via a temporary file in the same directory and rename(2), so readers only ever see
+// the old file or the complete new one.
+void write_file_atomic(const std::filesystem::path& path, std::span<const unsigned char> bytes);
+// Text via write_file_atomic.
+void write_text(const std::filesystem::path& path, std::string_view text);
+
+}  // namespace aosuite
