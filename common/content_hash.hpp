@@ -14,7 +14,7 @@
 #include <string_view>
 #include <type_traits>
 
-#include "compare/image_io.hpp"
+#include "common/file_io.hpp"
 
 namespace aosuite {
 

@@ -7,8 +7,8 @@
 #include <cmath>
 #include <limits>
 
+#include "common/file_io.hpp"
 #include "common/printable.hpp"
-#include "compare/image_io.hpp"
 
 namespace aosuite {
 
