@@ -37,8 +37,9 @@ namespace {
 constexpr float kPi = 3.14159265358979f;
 
 // FLIP's parameters (paper, section 4): colour quality exponent, cut-off fraction and
-// compressed range of the colour error, feature width in degrees, feature exponent.
-constexpr float kGqc = 0.7f, kGpc = 0.4f, kGpt = 0.95f, kGw = 0.082f, kGqf = 0.5f;
+// compressed range of the colour error, feature width in degrees. (The feature exponent, 1/2,
+// is the square root in the per-pixel tail.)
+constexpr float kGqc = 0.7f, kGpc = 0.4f, kGpt = 0.95f, kGw = 0.082f;
 
 // Contrast sensitivity: the achromatic and red-green channels are one Gaussian each, blue-
 // yellow the sum of two (a, b as in the paper's equation 2).

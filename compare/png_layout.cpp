@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "compare/image_io.hpp"
+#include "compare/printable.hpp"
 
 namespace aosuite {
 namespace {
@@ -22,6 +23,11 @@ bool is(const unsigned char* type, const char* name) { return std::memcmp(type, 
 
 [[noreturn]] void corrupt(const std::string& name, const std::string& why) {
   throw FileError(fmt::format("{}: {}: truncated or corrupt PNG", name, why));
+}
+
+// A chunk's type as a message quotes it: in a corrupt file its four bytes may be any bytes.
+std::string chunk_type(const unsigned char* type) {
+  return printable(std::string_view(reinterpret_cast<const char*>(type), 4));
 }
 
 bool legal_depth(int colour, int depth) {
@@ -106,8 +112,7 @@ PngLayout walk_png(std::span<const unsigned char> png, const std::string& name) 
     const std::size_t chunk_bytes = std::size_t{len} + 12;
     const bool critical = !(type[0] & 0x20);
     if (critical && crc32_gzip_refl(0, type, len + 4) != be32(&png[pos + 8 + len])) {
-      corrupt(name, fmt::format("{} chunk CRC mismatch",
-                                std::string_view(reinterpret_cast<const char*>(type), 4)));
+      corrupt(name, fmt::format("{} chunk CRC mismatch", chunk_type(type)));
     }
     if (is(type, "IDAT")) {
       if (idat_state == kAfter) corrupt(name, "IDAT chunks not consecutive");
@@ -139,8 +144,7 @@ PngLayout walk_png(std::span<const unsigned char> png, const std::string& name) 
       } else if (is(type, "IHDR")) {
         corrupt(name, "second IHDR chunk");
       } else if (critical) {
-        corrupt(name, fmt::format("unknown critical chunk '{}'",
-                                  std::string_view(reinterpret_cast<const char*>(type), 4)));
+        corrupt(name, fmt::format("unknown critical chunk '{}'", chunk_type(type)));
       }
     }
     pos += chunk_bytes;

@@ -10,6 +10,7 @@
 #include "compare/count_kernel.hpp"
 #include "compare/js_number.hpp"
 #include "compare/parallel_rows.hpp"
+#include "compare/printable.hpp"
 #include "compare/resemble_pixel.hpp"
 
 namespace aosuite::resemble {
@@ -21,7 +22,7 @@ Mode parse_mode(std::string_view name) {
   if (name == "colors") return Mode::kColors;
   if (name == "antialiasing") return Mode::kAntialiasing;
   if (name == "alpha") return Mode::kAlpha;
-  throw std::invalid_argument("unknown mode '" + std::string(name) +
+  throw std::invalid_argument("unknown mode '" + printable(name) +
                               "' (expected nothing, less, colors, antialiasing or alpha)");
 }
 

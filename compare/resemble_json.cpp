@@ -53,6 +53,11 @@ void require_object(const nlohmann::json& j, const char* key) {
   if (!j.is_object()) throw std::invalid_argument(fmt::format("'{}' must be an object", key));
 }
 
+// A key of Resemble's `tolerance` object, when present, replaces the mode's value.
+void take_override(const nlohmann::json& obj, const char* key, std::optional<double>& value) {
+  if (obj.contains(key)) value = number(obj.at(key), key);
+}
+
 }  // namespace
 
 void apply_json_options(const nlohmann::json& j, Options& o) {
@@ -85,15 +90,12 @@ void apply_json_options(const nlohmann::json& j, Options& o) {
       o.return_early_threshold = number(v, "returnEarlyThreshold");
     } else if (key == "tolerance") {
       require_object(v, "tolerance");
-      auto set = [&](std::optional<double>& t, const char* name) {
-        if (v.contains(name)) t = number(v.at(name), name);
-      };
-      set(o.tolerance.red, "red");
-      set(o.tolerance.green, "green");
-      set(o.tolerance.blue, "blue");
-      set(o.tolerance.alpha, "alpha");
-      set(o.tolerance.min_brightness, "minBrightness");
-      set(o.tolerance.max_brightness, "maxBrightness");
+      take_override(v, "red", o.tolerance.red);
+      take_override(v, "green", o.tolerance.green);
+      take_override(v, "blue", o.tolerance.blue);
+      take_override(v, "alpha", o.tolerance.alpha);
+      take_override(v, "minBrightness", o.tolerance.min_brightness);
+      take_override(v, "maxBrightness", o.tolerance.max_brightness);
     } else if (key == "scaleToSameSize") {
       if (v.is_boolean() && v.get<bool>()) {
         throw std::invalid_argument(

@@ -12,7 +12,7 @@
 
 namespace aosuite::harness {
 
-// printable(s): compare/printable.hpp (shared with the renderer's messages).
+// printable(s): common/printable.hpp (shared with the renderer's messages).
 using aosuite::printable;
 
 // printable() line by line: text of several lines (a command's stderr) keeps its line breaks.

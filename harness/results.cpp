@@ -6,6 +6,8 @@
 
 #include <atomic>
 #include <cerrno>
+#include <climits>
+#include <cstdint>
 #include <cstring>
 #include <fstream>
 #include <stdexcept>
@@ -19,6 +21,22 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 namespace {
+
+// A whole number that fits an int. A shard's results.json may hold anything there, and
+// converting a JSON float beyond int's range to int is undefined behaviour.
+int int_at(const json& j, const char* key) {
+  const json& v = j.at(key);
+  if (v.is_number_unsigned() ? v.get<std::uint64_t>() <= INT_MAX
+                             : v.is_number_integer() && v.get<std::int64_t>() >= INT_MIN &&
+                                   v.get<std::int64_t>() <= INT_MAX) {
+    return v.get<int>();
+  }
+  throw std::runtime_error(std::string("'") + key + "' must be an integer that fits an int");
+}
+
+int int_or(const json& j, const char* key, int fallback) {
+  return j.contains(key) ? int_at(j, key) : fallback;
+}
 
 json to_json(const ImageVerdict& v) {
   json metrics = json::object(), gates = json::array();
@@ -43,7 +61,7 @@ ImageVerdict verdict_from_json(const json& j) {
   v.identical = j.at("identical");
   v.mismatch_percent = j.at("mismatch_percent");
   v.mismatch_text = j.at("mismatch_text");
-  v.max_channel_delta = j.at("max_channel_delta");
+  v.max_channel_delta = int_at(j, "max_channel_delta");
   v.golden = j.at("golden").get<std::string>();
   v.message = j.at("message");
   const json metrics = j.value("metrics", json::object()), gates = j.value("gates", json::array());
@@ -117,18 +135,21 @@ CaseResult case_from_json(const json& j) {
   if (!valid_name(c.id))
     throw std::runtime_error("case id '" + printable(c.id) + "' is not a name");
   c.technique = j.at("technique");
-  c.width = j.at("width"), c.height = j.at("height");
+  c.width = int_at(j, "width"), c.height = int_at(j, "height");
   for (const auto& [k, v] : j.at("params").items()) c.params[k] = v;
   c.kind = j.value("kind", std::string("render"));
   c.source = j.value("source", std::string());
-  c.exit_status = j.value("exit_status", -1);
-  c.attempts = j.value("attempts", 1);
+  c.exit_status = int_or(j, "exit_status", -1);
+  c.attempts = int_or(j, "attempts", 1);
   c.command_stderr = j.value("command_stderr", std::string());
   const json& t = j.at("tolerance");
   c.tolerance.mode = resemble::parse_mode(t.at("mode").get<std::string>());
   c.tolerance.max_mismatch_percent = t.at("max_mismatch_percent");
-  c.tolerance.max_channel_delta = t.at("max_channel_delta");
-  for (const json& b : t.at("ignore")) c.tolerance.ignore.push_back({b[0], b[1], b[2], b[3]});
+  c.tolerance.max_channel_delta = int_at(t, "max_channel_delta");
+  // at(), not []: a box of fewer than four numbers must not be read past its end.
+  for (const json& b : t.at("ignore")) {
+    c.tolerance.ignore.push_back({b.at(0), b.at(1), b.at(2), b.at(3)});
+  }
   c.tolerance.mask = t.at("mask").get<std::string>();
   c.tolerance.resemble = t.value("resemble", true);
   c.tolerance.foreground_only = t.value("foreground_only", false);

@@ -89,6 +89,9 @@ template <class... F>
 struct Overloaded : F... {
   using F::operator()...;
 };
+// C++20 deduces this for an aggregate; clang before 17 (the fuzz build's) still needs it said.
+template <class... F>
+Overloaded(F...) -> Overloaded<F...>;
 
 // Throws std::invalid_argument when `p`'s value of `s` is out of its range.
 void check_spec(const ParamSpec& s, const AoParams& p) {

@@ -11,6 +11,8 @@ PACKAGES=(
   libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri libglm-dev libopenimageio-dev libopenexr-dev
   libtomlplusplus-dev libassimp-dev libxxhash-dev libembree-dev
   chromium
+  # clang and libFuzzer's runtime: the fuzz targets (fuzz/run.sh, the fuzz_smoke test).
+  clang libclang-rt-dev
   # scikit-image 0.19: the SSIM oracle of the oracle-live test (tests/oracles/metric_oracle.py);
   # the unit tests read its committed numbers and do not need it.
   python3-skimage

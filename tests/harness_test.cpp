@@ -656,5 +656,30 @@ TEST(Results, AnyBytesMakeValidJsonAndReadPathsStayInside) {
   }
 }
 
+// A shard's results.json is outside input: numbers that are not ints are refused rather than
+// converted (a float beyond int's range is undefined behaviour), and so are ignore boxes of
+// fewer than four numbers rather than read past their end (found by results_json_fuzz).
+TEST(Results, NumbersThatAreNotIntsAndShortBoxesAreRefused) {
+  CaseResult c;
+  c.id = "a", c.width = c.height = 8;
+  c.images = {ImageVerdict{}};
+  const nlohmann::json good = to_json(c);
+  ASSERT_NO_THROW(case_from_json(good));
+  using Pointer = nlohmann::json::json_pointer;
+  for (const auto& [where, value] : std::vector<std::pair<std::string, nlohmann::json>>{
+           {"/width", -5.5e118},
+           {"/height", 3000000000u},
+           {"/exit_status", -2147483649LL},
+           {"/attempts", 1.5},
+           {"/tolerance/max_channel_delta", 1e300},
+           {"/images/0/max_channel_delta", "7"},
+           {"/tolerance/ignore", nlohmann::json::array({nlohmann::json::array({1})})},
+           {"/tolerance/ignore", nlohmann::json::array({1, 2, 3, 4})}}) {
+    nlohmann::json j = good;
+    j[Pointer(where)] = value;
+    EXPECT_ANY_THROW(case_from_json(j)) << where << " = " << value.dump();
+  }
+}
+
 }  // namespace
 }  // namespace aosuite::harness

@@ -143,6 +143,19 @@ TEST(DecodePng, RejectsBadInputWithOneLineNamingTheFile) {
   expect_error(make_png(2, 2, 8, 6, std::vector<Bytes>(2, Bytes(8, 1)), {}, {}, {9}, 4), "filter");
 }
 
+// A corrupt file's chunk type may be any four bytes, a terminal's escape sequence too: messages
+// quote it escaped (found by fuzz/png_decode_fuzz.cpp).
+TEST(DecodePng, ChunkTypesAreQuotedEscaped) {
+  const Bytes good = make_png(1, 1, 8, 6, {Bytes(4, 9)});
+  Bytes odd(good.begin(), good.end() - 12);  // IEND is the last 12 bytes
+  test::put_chunk(odd, "\x1b[2J", {});       // critical: bit 5 of its first byte is clear
+  test::put_chunk(odd, "IEND", {});
+  expect_error(odd, "unknown critical chunk '\\x1b[2J'");
+  Bytes bad_crc = odd;
+  bad_crc[bad_crc.size() - 13] ^= 1;  // the last byte of the odd chunk's CRC
+  expect_error(bad_crc, "\\x1b[2J chunk CRC mismatch");
+}
+
 // An 8x8 RGBA PNG whose IDAT holds `z` under a valid CRC, so only the zlib layer is wrong.
 Bytes rgba8x8_with_idat(const Bytes& z) { return test::png_with_idat(8, 8, 8, 6, z); }
 

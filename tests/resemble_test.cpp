@@ -48,6 +48,17 @@ TEST(Resemble, CustomToleranceNeedsAMode) {
   EXPECT_EQ(compare(a, b, o).mismatch_count, 0u);
 }
 
+// A batch line's mode is quoted escaped in the error (found by fuzz/compare_options_fuzz.cpp).
+TEST(Resemble, UnknownModeIsQuotedEscaped) {
+  try {
+    parse_mode("\x1b[31mred");
+    FAIL() << "an unknown mode was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("unknown mode '\\x1b[31mred' (expected", 0), 0u)
+        << e.what();
+  }
+}
+
 TEST(Resemble, AlphaModeIgnoresAlpha) {
   const cv::Mat a = solid(1, 1, {100, 100, 100, 255}), b = solid(1, 1, {100, 100, 100, 55});
   EXPECT_EQ(compare(a, b, with_mode(Mode::kLess)).mismatch_count, 1u);

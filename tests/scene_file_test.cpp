@@ -202,6 +202,20 @@ TEST_F(MeshFiles, NonFinitePositionsAreRefused) {
   EXPECT_NE(error_of([&] { load_mesh(obj); }).find(obj.string() + ":"), std::string::npos);
 }
 
+// A PLY face list of length 0 is refused: assimp 5.2's triangulation asserts on it, which
+// aborted the whole process (found by mesh_fuzz).
+TEST_F(MeshFiles, FacesWithNoVerticesAreRefused) {
+  std::string ascii = tetra_ascii_ply();
+  ascii.replace(ascii.rfind("3 1 2 3\n"), 8, "0\n");
+  std::string binary = tetra_binary_ply(false);
+  binary.replace(binary.size() - 13, 13, std::string(1, '\0'));  // the last face: count 0
+  for (const auto& [name, text] : {std::pair{"a.ply", ascii}, std::pair{"b.ply", binary}}) {
+    const fs::path p = file(name, text);
+    EXPECT_NE(error_of([&] { load_mesh(p); }).find(p.string() + ": a face with no vertices"),
+              std::string::npos);
+  }
+}
+
 TEST_F(MeshFiles, EveryTruncationOfABinaryPlyIsRefused) {
   // assimp's own reader crashes on these; every cut must give an error naming the file.
   const std::string whole = tetra_binary_ply(false);

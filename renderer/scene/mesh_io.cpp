@@ -83,11 +83,17 @@ Mesh load_mesh(const std::filesystem::path& path) {
   const aiScene* scene = importer.ReadFileFromMemory(
       bytes.data(), bytes.size(), aiProcess_ValidateDataStructure, ext.c_str() + 1);
   if (!scene) fail(path, importer.GetErrorString());
-  // Before vertices are welded, so a NaN cannot hide in a merged vertex.
+  // Before vertices are welded, so a NaN cannot hide in a merged vertex; and before
+  // triangulation, whose assertion (assimp 5.2) aborts the process on a face of no vertices
+  // (a PLY face list of length 0).
   for (unsigned i = 0; i < scene->mNumMeshes; ++i) {
     const aiMesh& m = *scene->mMeshes[i];
     if (!std::all_of(m.mVertices, m.mVertices + m.mNumVertices, finite)) {
       fail(path, "a vertex position is NaN or infinite");
+    }
+    if (std::any_of(m.mFaces, m.mFaces + m.mNumFaces,
+                    [](const aiFace& f) { return f.mNumIndices == 0; })) {
+      fail(path, "a face with no vertices");
     }
   }
   // OBJ and OFF readers give every face its own vertices; welding restores shared ones so
