@@ -7,8 +7,8 @@
 #include <cstring>
 #include <memory>
 
+#include "common/printable.hpp"
 #include "compare/image_io.hpp"
-#include "compare/printable.hpp"
 
 namespace aosuite {
 namespace {

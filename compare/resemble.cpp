@@ -7,10 +7,10 @@
 #include <stdexcept>
 #include <string>
 
+#include "common/printable.hpp"
 #include "compare/count_kernel.hpp"
 #include "compare/js_number.hpp"
 #include "compare/parallel_rows.hpp"
-#include "compare/printable.hpp"
 #include "compare/resemble_pixel.hpp"
 
 namespace aosuite::resemble {
