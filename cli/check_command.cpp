@@ -223,7 +223,22 @@ int run_check(const HarnessArgs& a) {
   return finish(run, o.report_dir, a.junit, {.json = a.json, .single_file = a.single_file});
 }
 
-int run_bless(const HarnessArgs& a) {
+// `bless --failed --report DIR` (or --from-report) with no suite named: the suite the report
+// was made from, as its results.json says (the path as check was given it).
+HarnessArgs with_report_suite(HarnessArgs a) {
+  const bool folders = !a.actual.empty() || !a.expected.empty();
+  if (!a.suite.empty() || folders || !(a.failed || a.from_report) || a.report.empty()) return a;
+  const hs::RunResults last = hs::read_results(a.report);
+  if (last.suite_file.empty()) {
+    throw std::invalid_argument(
+        fmt::format("{} was made in folder mode: name --actual DIR --expected DIR", a.report));
+  }
+  a.suite = last.suite_file;
+  return a;
+}
+
+int run_bless(const HarnessArgs& given) {
+  const HarnessArgs a = with_report_suite(given);
   const hs::Suite suite = load(a);
   hs::BlessOptions b{.run = run_options(suite, a),
                      .platform = a.platform,
@@ -354,7 +369,8 @@ void add_bless_command(CLI::App& app, int& rc) {
   cmd->add_flag("--from-report", a->from_report,
                 "accept the last report's images (--report DIR) instead of rendering");
   cmd->add_flag("--failed", a->failed,
-                "accept every FAIL and NEW case of the last report, from its images");
+                "accept every FAIL and NEW case of the last report, from its images (with "
+                "--report DIR and no suite: the report's own suite)");
   guarded(cmd, rc, "bless", [a] { return escaped_errors([&] { return run_bless(*a); }); });
 }
 
