@@ -68,6 +68,11 @@ class Rendezvous {
 
 }  // namespace
 
+std::uint32_t band_rows_for(std::uint32_t width) {
+  return std::max<std::uint32_t>(1,
+                                 static_cast<std::uint32_t>(kBandBytes / (std::size_t{width} * 4)));
+}
+
 std::optional<resemble::Result> compare_png_bands(std::span<const unsigned char> a,
                                                   const std::string& name_a,
                                                   std::span<const unsigned char> b,
@@ -85,8 +90,7 @@ std::optional<resemble::Result> compare_png_bands(std::span<const unsigned char>
     return std::nullopt;
   }
   const std::uint32_t w = png[0]->width(), h = png[0]->height();
-  const std::uint32_t band_rows =
-      std::max<std::uint32_t>(1, static_cast<std::uint32_t>(kBandBytes / (std::size_t{w} * 4)));
+  const std::uint32_t band_rows = band_rows_for(w);
   const std::uint32_t bands = (h + band_rows - 1) / band_rows;
   // Both rings in one buffer: a few huge-page faults rather than hundreds of small ones.
   const std::array<std::size_t, 2> slot_bytes = {png[0]->band_bytes(band_rows),
