@@ -1,7 +1,6 @@
 #include "compare/png_fast.hpp"
 
 #include <fmt/format.h>
-#include <immintrin.h>
 #include <isa-l/crc.h>
 #include <isa-l/igzip_lib.h>
 
@@ -13,138 +12,13 @@
 
 #include "compare/image_io.hpp"
 #include "compare/png_layout.hpp"
+#include "compare/png_unfilter.hpp"
 
 namespace aosuite {
 namespace {
 
 std::uint32_t be32(const unsigned char* p) {
   return std::uint32_t{p[0]} << 24 | std::uint32_t{p[1]} << 16 | std::uint32_t{p[2]} << 8 | p[3];
-}
-
-int paeth(int a, int b, int c) {
-  const int p = a + b - c;
-  const int pa = std::abs(p - a), pb = std::abs(p - b), pc = std::abs(p - c);
-  if (pa <= pb && pa <= pc) return a;
-  return pb <= pc ? b : c;
-}
-
-// The filters for 4-byte pixels, a pixel per step in SIMD lanes: each pixel depends on the
-// one to its left, so a step's latency is what counts; the scalar loops went a byte at a
-// time with a branch per byte (Paeth was the slowest filter).
-std::int32_t load32(const unsigned char* p) {
-  std::int32_t v;
-  std::memcpy(&v, p, 4);
-  return v;
-}
-
-void store32(unsigned char* p, __m128i v) {
-  const std::int32_t out = _mm_cvtsi128_si32(v);
-  std::memcpy(p, &out, 4);
-}
-
-// Sub: the left pixel added bytewise.
-void unsub4(const unsigned char* src, unsigned char* dst, std::size_t len) {
-  __m128i a = _mm_setzero_si128();
-  for (std::size_t i = 0; i < len; i += 4) {
-    a = _mm_add_epi8(_mm_cvtsi32_si128(load32(src + i)), a);
-    store32(dst + i, a);
-  }
-}
-
-// Average: floor((a + b) / 2) is pavgb's rounded-up mean less the low bit of a ^ b.
-void unavg4(const unsigned char* src, unsigned char* dst, const unsigned char* prev,
-            std::size_t len) {
-  const __m128i one = _mm_set1_epi8(1);
-  __m128i a = _mm_setzero_si128();
-  for (std::size_t i = 0; i < len; i += 4) {
-    const __m128i b = _mm_cvtsi32_si128(load32(prev + i));
-    const __m128i mean = _mm_sub_epi8(_mm_avg_epu8(a, b), _mm_and_si128(_mm_xor_si128(a, b), one));
-    a = _mm_add_epi8(_mm_cvtsi32_si128(load32(src + i)), mean);
-    store32(dst + i, a);
-  }
-}
-
-// Paeth in 16-bit lanes. Only x = a - c depends on the previous pixel; b - c and
-// pa = |b - c| are computed off that chain, which SSSE3's pabsw and SSE4.1's pblendvb keep
-// short (about 8 dependent instructions a pixel against 13 in SSE2).
-__attribute__((target("sse4.1"))) void unpaeth4(const unsigned char* src, unsigned char* dst,
-                                                const unsigned char* prev, std::size_t len) {
-  const __m128i zero = _mm_setzero_si128(), low_byte = _mm_set1_epi16(0xff);
-  auto widen = [&](const unsigned char* p) {
-    return _mm_unpacklo_epi8(_mm_cvtsi32_si128(load32(p)), zero);
-  };
-  __m128i a = zero, c = zero;
-  for (std::size_t i = 0; i < len; i += 4) {
-    const __m128i b = widen(prev + i);
-    const __m128i q = _mm_sub_epi16(b, c);
-    const __m128i pa = _mm_abs_epi16(q);  // |p - a| with p = a + b - c
-    const __m128i x = _mm_sub_epi16(a, c);
-    const __m128i pb = _mm_abs_epi16(x);
-    const __m128i pc = _mm_abs_epi16(_mm_add_epi16(x, q));
-    const __m128i not_a = _mm_cmpgt_epi16(pa, _mm_min_epi16(pb, pc));
-    const __m128i b_or_c = _mm_blendv_epi8(b, c, _mm_cmpgt_epi16(pb, pc));
-    a = _mm_and_si128(_mm_add_epi16(widen(src + i), _mm_blendv_epi8(a, b_or_c, not_a)), low_byte);
-    store32(dst + i, _mm_packus_epi16(a, a));
-    c = b;
-  }
-}
-
-bool has_sse41() {
-  static const bool yes = __builtin_cpu_supports("sse4.1");
-  return yes;
-}
-
-// Up, 16 bytes at a time. Written out because dst may overlap src (see unfilter), which
-// keeps the compiler from vectorising the plain loop.
-void unup(const unsigned char* src, unsigned char* dst, const unsigned char* prev,
-          std::size_t len) {
-  std::size_t i = 0;
-  for (; i + 16 <= len; i += 16) {
-    const __m128i v = _mm_loadu_si128(reinterpret_cast<const __m128i*>(src + i));
-    const __m128i p = _mm_loadu_si128(reinterpret_cast<const __m128i*>(prev + i));
-    _mm_storeu_si128(reinterpret_cast<__m128i*>(dst + i), _mm_add_epi8(v, p));
-  }
-  for (; i < len; ++i) dst[i] = static_cast<unsigned char>(src[i] + prev[i]);
-}
-
-// Reverses one row's filter (0..4, checked by inflate_rows) from src into dst; `prev` is the
-// previous unfiltered row (zeros for row 0). dst is src, or lies before it in the same
-// buffer: each byte is written only after the bytes of src at and below its address have
-// been read, going forward.
-template <int Bpp>
-void unfilter(int type, const unsigned char* src, unsigned char* dst, const unsigned char* prev,
-              std::size_t len) {
-  switch (type) {
-    case 0:
-      std::memmove(dst, src, len);
-      return;
-    case 1:
-      if constexpr (Bpp == 4) return unsub4(src, dst, len);
-      for (std::size_t i = 0; i < Bpp; ++i) dst[i] = src[i];
-      for (std::size_t i = Bpp; i < len; ++i)
-        dst[i] = static_cast<unsigned char>(src[i] + dst[i - Bpp]);
-      return;
-    case 2:
-      unup(src, dst, prev, len);
-      return;
-    case 3:
-      if constexpr (Bpp == 4) return unavg4(src, dst, prev, len);
-      for (std::size_t i = 0; i < Bpp; ++i)
-        dst[i] = static_cast<unsigned char>(src[i] + (prev[i] >> 1));
-      for (std::size_t i = Bpp; i < len; ++i) {
-        dst[i] = static_cast<unsigned char>(src[i] + ((dst[i - Bpp] + prev[i]) >> 1));
-      }
-      return;
-    case 4:
-      if constexpr (Bpp == 4) {
-        if (has_sse41()) return unpaeth4(src, dst, prev, len);
-      }
-      for (std::size_t i = 0; i < Bpp; ++i) dst[i] = static_cast<unsigned char>(src[i] + prev[i]);
-      for (std::size_t i = Bpp; i < len; ++i) {
-        dst[i] = static_cast<unsigned char>(src[i] + paeth(dst[i - Bpp], prev[i], prev[i - Bpp]));
-      }
-      return;
-  }
 }
 
 FileError corrupt(const std::string& name, const char* why) {
@@ -282,22 +156,11 @@ void PngRows::finish() {
 
 void PngRows::read(unsigned char* out, std::uint32_t rows) {
   const std::size_t len = row_len();
-  inflate_rows(out, rows);
-  // Row y unfilters to y * len, y + 1 bytes left of where it was inflated, so the same
-  // memory becomes the pixels: no second buffer and no extra pass. Each byte is written
-  // only after the bytes it overwrites have been read.
-  const unsigned char* prev = prev_.data();
-  for (std::uint32_t y = 0; y < rows; ++y) {
-    const unsigned char* row = out + y * (len + 1) + 1;
-    unsigned char* dst = out + y * len;
-    if (bpp_ == 4) {
-      unfilter<4>(row[-1], row, dst, prev, len);
-    } else {
-      unfilter<3>(row[-1], row, dst, prev, len);
-    }
-    prev = dst;
-  }
-  std::memcpy(prev_.data(), prev, len);
+  // Inflated a row into the buffer and unfiltered to its start, so the same memory becomes
+  // the pixels: no second buffer and no extra pass.
+  inflate_rows(out + len, rows);
+  unfilter_rows(out + len, out, prev_.data(), len, bpp_, rows);
+  std::memcpy(prev_.data(), out + (rows - 1) * len, len);
   if (bpp_ == 4) return;
   // RGB to RGBA from the last pixel back, as each pixel moves right.
   for (std::size_t i = std::size_t{rows} * width_; i-- > 0;) {

@@ -30,16 +30,18 @@ TEST(DecodePng, GreyGreyAlphaPaletteAndSixteenBit) {
 }
 
 TEST(DecodePng, EveryRowFilterForRgbAndRgba) {
-  // Rows cycle through None, Sub, Up, Average and Paeth, then repeat each filter (a row
-  // filtered against one filtered the same way); random samples exercise every predictor
-  // branch, values 0-3 the ties between predictors, the widths every loop tail. RGBA
-  // and RGB 8-bit take the ISA-L path.
+  // Rows cycle through None, Sub, Up, Average and Paeth, repeat each filter (a row
+  // filtered against one filtered the same way), then go through every ordered pair of
+  // Sub, Average and Paeth (unfiltered two rows at once); random samples exercise every
+  // predictor branch, values 0-3 the ties between predictors, the widths every loop tail.
+  // RGBA and RGB 8-bit take the ISA-L path.
   cv::RNG rng(5);
   // Ties that change Paeth's choice need a + 2b = 3c, which a small contiguous range hits.
-  const std::vector<int> filters{0, 1, 2, 3, 4, 0, 0, 1, 1, 2, 2, 3, 3, 4, 4, 4};
+  const std::vector<int> filters{0, 1, 2, 3, 4, 0, 0, 1, 1, 2, 2, 3, 3, 4, 4, 4, 2, 1,
+                                 1, 1, 3, 1, 4, 3, 1, 3, 3, 3, 4, 4, 1, 4, 3, 4, 4};
   for (int channels : {3, 4}) {
     for (int w : {1, 2, 3, 4, 5, 37, 74}) {
-      const int h = 23;
+      const int h = static_cast<int>(filters.size());
       const bool ties = w == 74;
       std::vector<Bytes> rows(h, Bytes(std::size_t(w) * channels));
       for (auto& r : rows)
