@@ -1,17 +1,24 @@
 // Comparator kernels per mode at 1080p and 4K, PNG decode, two PNG files compared whole or
-// in bands, and a memory-bandwidth baseline (one read of both images) that the kernel is
-// measured against.
+// in bands, and the floors they are measured against: one read of both images (memory
+// bandwidth) for the kernel, both files inflated and unfiltered for the band comparison.
+//
+// `--pair=A.png,B.png` (repeatable) also runs the band comparison and its floor on those
+// files, e.g. peers-bench's pairs, so a whole `aosuite compare` can be held to the floor.
 #include <benchmark/benchmark.h>
 #include <sys/mman.h>
 
 #include <atomic>
+#include <cstring>
 #include <future>
 #include <opencv2/core/utility.hpp>
+#include <string_view>
+#include <thread>
 
 #include "compare/band_compare.hpp"
 #include "compare/count_kernel.hpp"
 #include "compare/opencv.hpp"
 #include "compare/parallel_rows.hpp"
+#include "compare/png_fast.hpp"
 
 namespace {
 
@@ -90,6 +97,17 @@ void BM_CountScalarReference(benchmark::State& state) {
   set_pixels(state, a);
 }
 
+using PngPair = std::array<std::vector<unsigned char>, 2>;
+
+const PngPair& png_pair_for(int height) {
+  static const auto encode = [](int h) {
+    const auto& [a, b] = pair_for(h);
+    return PngPair{aosuite::encode_png_rgba8(a, 6), aosuite::encode_png_rgba8(b, 6)};
+  };
+  static const PngPair p1080 = encode(1080), p2160 = encode(2160);
+  return height == 1080 ? p1080 : p2160;
+}
+
 void BM_DecodePng(benchmark::State& state) {
   const auto& a = pair_for(static_cast<int>(state.range(0))).first;
   const std::vector<unsigned char> png = aosuite::encode_png_rgba8(a, 6);
@@ -102,9 +120,7 @@ void BM_DecodePng(benchmark::State& state) {
 // pays the kernel's zeroing of 2 x 33 MB of fresh pages at 4K every iteration, as a process
 // does once.
 void BM_ComparePngFiles(benchmark::State& state, bool bands) {
-  const auto& [a, b] = pair_for(static_cast<int>(state.range(0)));
-  const std::vector<unsigned char> pa = aosuite::encode_png_rgba8(a, 6);
-  const std::vector<unsigned char> pb = aosuite::encode_png_rgba8(b, 6);
+  const auto& [pa, pb] = png_pair_for(static_cast<int>(state.range(0)));
   aosuite::resemble::Options o;
   o.modes = {Mode::kLess};
   for (auto _ : state) {
@@ -117,7 +133,40 @@ void BM_ComparePngFiles(benchmark::State& state, bool bands) {
       benchmark::DoNotOptimize(aosuite::resemble::compare(img_a, decoding_b.get(), o));
     }
   }
+  const auto& a = pair_for(static_cast<int>(state.range(0))).first;
   state.SetItemsProcessed(static_cast<int64_t>(state.iterations()) * a.rows * a.cols);
+}
+
+// One file inflated and unfiltered a band at a time into `band`, as compare_png_bands
+// reads it (chunk checks, inflate, Adler-32, row filters), its rows thrown away.
+void inflate_and_unfilter(const std::vector<unsigned char>& png, unsigned char* band) {
+  std::optional<aosuite::PngRows> rows = aosuite::PngRows::open(png, "floor");
+  if (!rows) throw std::invalid_argument("not an 8-bit RGB(A) PNG: the band reader's kind");
+  const std::uint32_t h = rows->height(), band_rows = aosuite::band_rows_for(rows->width());
+  for (std::uint32_t y = 0; y < h; y += band_rows) rows->read(band, std::min(band_rows, h - y));
+}
+
+// The floor of comparing two PNG files: each inflated and unfiltered on a thread of its own
+// (started every iteration, as compare_png_bands starts one), and nothing else: no shared
+// ring of bands, no counting, no process. Buffers are allocated once, outside the timing.
+void two_inflate_floor(benchmark::State& state, const PngPair& files) {
+  const aosuite::PixelBuffer bands(std::size_t{2} << 20);
+  for (auto _ : state) {
+    std::jthread other([&] { inflate_and_unfilter(files[1], bands.data() + (1 << 20)); });
+    inflate_and_unfilter(files[0], bands.data());
+  }
+}
+
+void BM_TwoInflateFloor(benchmark::State& state) {
+  two_inflate_floor(state, png_pair_for(static_cast<int>(state.range(0))));
+}
+
+void compare_png_bands_on(benchmark::State& state, const PngPair& files) {
+  aosuite::resemble::Options o;
+  o.modes = {Mode::kLess};
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(aosuite::compare_png_bands(files[0], "a", files[1], "b", o));
+  }
 }
 
 // What a process pays to fault in 2 MB of fresh memory as 4 KB pages or as one huge page
@@ -156,10 +205,47 @@ BENCHMARK(BM_CountScalarReference)->SIZES;
 BENCHMARK(BM_DecodePng)->SIZES;
 BENCHMARK_CAPTURE(BM_ComparePngFiles, whole, false)->SIZES;
 BENCHMARK_CAPTURE(BM_ComparePngFiles, bands, true)->SIZES;
+BENCHMARK(BM_TwoInflateFloor)->SIZES;
 BENCHMARK(BM_EncodeDiffPng)->SIZES;
 BENCHMARK_CAPTURE(BM_FaultIn2MB, small_pages, false)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_FaultIn2MB, huge_page, true)->Unit(benchmark::kMillisecond);
 
+// Registers the floor and the band comparison for each --pair=A,B, and removes those flags.
+void register_file_pairs(int& argc, char** argv) {
+  static std::vector<PngPair> pairs;  // registered benchmarks keep references into it
+  static constexpr std::string_view kFlag = "--pair=";
+  std::vector<std::string> names;
+  int kept = 1;
+  for (int i = 1; i < argc; ++i) {
+    const std::string_view arg = argv[i];
+    const std::size_t comma = arg.find(',');
+    if (!arg.starts_with(kFlag) || comma == std::string_view::npos) {
+      argv[kept++] = argv[i];
+      continue;
+    }
+    const std::string a(arg.substr(kFlag.size(), comma - kFlag.size())), b(arg.substr(comma + 1));
+    pairs.push_back({aosuite::read_file(a), aosuite::read_file(b)});
+    names.push_back(a + "," + b);
+  }
+  argc = kept;
+  pairs.shrink_to_fit();
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    for (const auto& [what, f] : {std::pair{"TwoInflateFloor/", &two_inflate_floor},
+                                  std::pair{"ComparePngBands/", &compare_png_bands_on}}) {
+      benchmark::RegisterBenchmark((what + names[i]).c_str(), f, std::cref(pairs[i]))
+          ->Unit(benchmark::kMillisecond)
+          ->UseRealTime();
+    }
+  }
+}
+
 }  // namespace
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+  register_file_pairs(argc, argv);
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

@@ -3,7 +3,6 @@
 #include <array>
 #include <condition_variable>
 #include <exception>
-#include <future>
 #include <mutex>
 #include <thread>
 
@@ -19,31 +18,39 @@ constexpr std::size_t kBandBytes = 128 << 10;
 // Bands in flight per image: a decoder may run this many bands ahead of the counting.
 constexpr std::uint32_t kSlots = 4;
 
-// Two decoders meet here. Band i goes into slot i % kSlots of both images; whichever
-// decoder finishes a band second counts it and frees its slot for band i + kSlots.
+// Two decoders meet here. Band i goes into slot i % kSlots of both images; once both have
+// it, it is counted by whichever decoder next finds its own next slot still taken (or its
+// file done), and its slot is freed for band i + kSlots. So the decoder ahead does the
+// counting while the one behind keeps decoding, and the run ends when the slower file does.
 class Rendezvous {
  public:
-  Rendezvous() {
+  explicit Rendezvous(std::uint32_t bands) : bands_(bands) {
     for (std::uint32_t s = 0; s < kSlots; ++s) free_for_[s] = s;
   }
-  // Waits until band i's slot is free; false when the other decoder failed.
-  bool wait_for_slot(std::uint32_t band) {
+  // Waits until band's slot is free, counting meanwhile; false when the other decoder failed.
+  template <class Count>
+  bool wait_for_slot(std::uint32_t band, Count& count) {
     std::unique_lock lock(m_);
-    cv_.wait(lock, [&] { return failed_ || free_for_[band % kSlots] == band; });
+    while (!failed_ && free_for_[band % kSlots] != band) {
+      if (!count_one(lock, count)) cv_.wait(lock);
+    }
     return !failed_;
   }
-  // True for the second decoder to arrive with band i: it counts the band, then frees it.
-  bool arrive(std::uint32_t band) {
-    std::lock_guard lock(m_);
-    return ++arrived_[band % kSlots] == 2;
-  }
-  void free_slot(std::uint32_t band) {
+  // The decoder has band i in its slot. Bands reach both decoders in order.
+  void arrive(std::uint32_t band) {
     {
       std::lock_guard lock(m_);
-      arrived_[band % kSlots] = 0;
-      free_for_[band % kSlots] = band + kSlots;
+      if (++arrived_[band % kSlots] == 2) ++both_have_;
     }
     cv_.notify_all();
+  }
+  // After the decoder's last band: counts until every band is counted.
+  template <class Count>
+  void finish(Count& count) {
+    std::unique_lock lock(m_);
+    while (!failed_ && counted_ < bands_) {
+      if (!count_one(lock, count)) cv_.wait(lock);
+    }
   }
   void fail(std::exception_ptr e) {
     {
@@ -58,15 +65,38 @@ class Rendezvous {
   }
 
  private:
+  // Counts the next band both decoders have, if any (unlocked meanwhile), and frees its slot.
+  template <class Count>
+  bool count_one(std::unique_lock<std::mutex>& lock, Count& count) {
+    if (taken_ == both_have_) return false;
+    const std::uint32_t band = taken_++;
+    lock.unlock();
+    count(band);
+    lock.lock();
+    arrived_[band % kSlots] = 0;
+    free_for_[band % kSlots] = band + kSlots;
+    ++counted_;
+    cv_.notify_all();
+    return true;
+  }
+
   std::mutex m_;
   std::condition_variable cv_;
+  const std::uint32_t bands_;
   std::array<std::uint32_t, kSlots> free_for_{};
   std::array<int, kSlots> arrived_{};
+  // Bands both decoders have, taken for counting, and counted: each a prefix of all bands.
+  std::uint32_t both_have_ = 0, taken_ = 0, counted_ = 0;
   bool failed_ = false;
   std::exception_ptr error_;
 };
 
 }  // namespace
+
+std::uint32_t band_rows_for(std::uint32_t width) {
+  return std::max<std::uint32_t>(1,
+                                 static_cast<std::uint32_t>(kBandBytes / (std::size_t{width} * 4)));
+}
 
 std::optional<resemble::Result> compare_png_bands(std::span<const unsigned char> a,
                                                   const std::string& name_a,
@@ -77,16 +107,14 @@ std::optional<resemble::Result> compare_png_bands(std::span<const unsigned char>
   // The files' pixels are what is compared only without a canvas model.
   const std::optional<std::array<int, 4>> min_delta = resemble::count_only_thresholds(options);
   if (!min_delta || options.canvas_alpha != CanvasAlpha::kNone) return std::nullopt;
-  // Opening checks every chunk's CRC: one file on each thread.
-  auto opening_b = std::async(std::launch::async, [&] { return PngRows::open(b, name_b); });
-  std::array<std::optional<PngRows>, 2> png = {PngRows::open(a, name_a), opening_b.get()};
+  // Opening reads only the chunk headers (the image data's CRCs are checked as it is read).
+  std::array<std::optional<PngRows>, 2> png = {PngRows::open(a, name_a), PngRows::open(b, name_b)};
   if (!png[0] || !png[1] || png[0]->width() != png[1]->width() ||
       png[0]->height() != png[1]->height()) {
     return std::nullopt;
   }
   const std::uint32_t w = png[0]->width(), h = png[0]->height();
-  const std::uint32_t band_rows =
-      std::max<std::uint32_t>(1, static_cast<std::uint32_t>(kBandBytes / (std::size_t{w} * 4)));
+  const std::uint32_t band_rows = band_rows_for(w);
   const std::uint32_t bands = (h + band_rows - 1) / band_rows;
   // Both rings in one buffer: a few huge-page faults rather than hundreds of small ones.
   const std::array<std::size_t, 2> slot_bytes = {png[0]->band_bytes(band_rows),
@@ -96,19 +124,21 @@ std::optional<resemble::Result> compare_png_bands(std::span<const unsigned char>
     return rings.data() + (i ? slot_bytes[0] * kSlots : 0) + (band % kSlots) * slot_bytes[i];
   };
 
-  Rendezvous meet;
+  Rendezvous meet(bands);
   std::array<MismatchTally, 2> tally;
   auto decode = [&](int i) {
+    auto count = [&](std::uint32_t band) {
+      const std::uint32_t y0 = band * band_rows, rows = std::min(band_rows, h - y0);
+      tally[i].merge(count_band(slot(0, band), slot(1, band), static_cast<int>(w),
+                                static_cast<int>(rows), static_cast<int>(y0), *min_delta));
+    };
     try {
       for (std::uint32_t band = 0; band < bands; ++band) {
-        const std::uint32_t y0 = band * band_rows, rows = std::min(band_rows, h - y0);
-        if (!meet.wait_for_slot(band)) return;
-        png[i]->read(slot(i, band), rows);
-        if (!meet.arrive(band)) continue;
-        tally[i].merge(count_band(slot(0, band), slot(1, band), static_cast<int>(w),
-                                  static_cast<int>(rows), static_cast<int>(y0), *min_delta));
-        meet.free_slot(band);
+        if (!meet.wait_for_slot(band, count)) return;
+        png[i]->read(slot(i, band), std::min(band_rows, h - band * band_rows));
+        meet.arrive(band);
       }
+      meet.finish(count);
     } catch (...) {
       meet.fail(std::current_exception());
     }

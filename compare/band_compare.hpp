@@ -5,6 +5,7 @@
 // (png_fast.hpp), and the bands stay in cache between decoding and counting.
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <span>
 #include <string>
@@ -12,6 +13,9 @@
 #include "compare/resemble.hpp"
 
 namespace aosuite {
+
+// Rows per band for images `width` pixels wide (about 128 KB of pixels, at least one row).
+std::uint32_t band_rows_for(std::uint32_t width);
 
 // Resemble's result for the two files (no diff image), when the options reduce to
 // per-channel thresholds (resemble::count_only_thresholds) without a canvas model and both

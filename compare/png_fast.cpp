@@ -1,7 +1,6 @@
 #include "compare/png_fast.hpp"
 
 #include <fmt/format.h>
-#include <immintrin.h>
 #include <isa-l/crc.h>
 #include <isa-l/igzip_lib.h>
 
@@ -13,6 +12,7 @@
 
 #include "compare/image_io.hpp"
 #include "compare/png_layout.hpp"
+#include "compare/png_unfilter.hpp"
 
 namespace aosuite {
 namespace {
@@ -21,141 +21,26 @@ std::uint32_t be32(const unsigned char* p) {
   return std::uint32_t{p[0]} << 24 | std::uint32_t{p[1]} << 16 | std::uint32_t{p[2]} << 8 | p[3];
 }
 
-int paeth(int a, int b, int c) {
-  const int p = a + b - c;
-  const int pa = std::abs(p - a), pb = std::abs(p - b), pc = std::abs(p - c);
-  if (pa <= pb && pa <= pc) return a;
-  return pb <= pc ? b : c;
-}
-
-// The filters for 4-byte pixels, a pixel per step in SIMD lanes: each pixel depends on the
-// one to its left, so a step's latency is what counts; the scalar loops went a byte at a
-// time with a branch per byte (Paeth was the slowest filter).
-std::int32_t load32(const unsigned char* p) {
-  std::int32_t v;
-  std::memcpy(&v, p, 4);
-  return v;
-}
-
-void store32(unsigned char* p, __m128i v) {
-  const std::int32_t out = _mm_cvtsi128_si32(v);
-  std::memcpy(p, &out, 4);
-}
-
-// Sub: the left pixel added bytewise.
-void unsub4(const unsigned char* src, unsigned char* dst, std::size_t len) {
-  __m128i a = _mm_setzero_si128();
-  for (std::size_t i = 0; i < len; i += 4) {
-    a = _mm_add_epi8(_mm_cvtsi32_si128(load32(src + i)), a);
-    store32(dst + i, a);
-  }
-}
-
-// Average: floor((a + b) / 2) is pavgb's rounded-up mean less the low bit of a ^ b.
-void unavg4(const unsigned char* src, unsigned char* dst, const unsigned char* prev,
-            std::size_t len) {
-  const __m128i one = _mm_set1_epi8(1);
-  __m128i a = _mm_setzero_si128();
-  for (std::size_t i = 0; i < len; i += 4) {
-    const __m128i b = _mm_cvtsi32_si128(load32(prev + i));
-    const __m128i mean = _mm_sub_epi8(_mm_avg_epu8(a, b), _mm_and_si128(_mm_xor_si128(a, b), one));
-    a = _mm_add_epi8(_mm_cvtsi32_si128(load32(src + i)), mean);
-    store32(dst + i, a);
-  }
-}
-
-// Paeth in 16-bit lanes. Only x = a - c depends on the previous pixel; b - c and
-// pa = |b - c| are computed off that chain, which SSSE3's pabsw and SSE4.1's pblendvb keep
-// short (about 8 dependent instructions a pixel against 13 in SSE2).
-__attribute__((target("sse4.1"))) void unpaeth4(const unsigned char* src, unsigned char* dst,
-                                                const unsigned char* prev, std::size_t len) {
-  const __m128i zero = _mm_setzero_si128(), low_byte = _mm_set1_epi16(0xff);
-  auto widen = [&](const unsigned char* p) {
-    return _mm_unpacklo_epi8(_mm_cvtsi32_si128(load32(p)), zero);
-  };
-  __m128i a = zero, c = zero;
-  for (std::size_t i = 0; i < len; i += 4) {
-    const __m128i b = widen(prev + i);
-    const __m128i q = _mm_sub_epi16(b, c);
-    const __m128i pa = _mm_abs_epi16(q);  // |p - a| with p = a + b - c
-    const __m128i x = _mm_sub_epi16(a, c);
-    const __m128i pb = _mm_abs_epi16(x);
-    const __m128i pc = _mm_abs_epi16(_mm_add_epi16(x, q));
-    const __m128i not_a = _mm_cmpgt_epi16(pa, _mm_min_epi16(pb, pc));
-    const __m128i b_or_c = _mm_blendv_epi8(b, c, _mm_cmpgt_epi16(pb, pc));
-    a = _mm_and_si128(_mm_add_epi16(widen(src + i), _mm_blendv_epi8(a, b_or_c, not_a)), low_byte);
-    store32(dst + i, _mm_packus_epi16(a, a));
-    c = b;
-  }
-}
-
-bool has_sse41() {
-  static const bool yes = __builtin_cpu_supports("sse4.1");
-  return yes;
-}
-
-// Up, 16 bytes at a time. Written out because dst may overlap src (see unfilter), which
-// keeps the compiler from vectorising the plain loop.
-void unup(const unsigned char* src, unsigned char* dst, const unsigned char* prev,
-          std::size_t len) {
-  std::size_t i = 0;
-  for (; i + 16 <= len; i += 16) {
-    const __m128i v = _mm_loadu_si128(reinterpret_cast<const __m128i*>(src + i));
-    const __m128i p = _mm_loadu_si128(reinterpret_cast<const __m128i*>(prev + i));
-    _mm_storeu_si128(reinterpret_cast<__m128i*>(dst + i), _mm_add_epi8(v, p));
-  }
-  for (; i < len; ++i) dst[i] = static_cast<unsigned char>(src[i] + prev[i]);
-}
-
-// Reverses one row's filter (0..4, checked by inflate_rows) from src into dst; `prev` is the
-// previous unfiltered row (zeros for row 0). dst is src, or lies before it in the same
-// buffer: each byte is written only after the bytes of src at and below its address have
-// been read, going forward.
-template <int Bpp>
-void unfilter(int type, const unsigned char* src, unsigned char* dst, const unsigned char* prev,
-              std::size_t len) {
-  switch (type) {
-    case 0:
-      std::memmove(dst, src, len);
-      return;
-    case 1:
-      if constexpr (Bpp == 4) return unsub4(src, dst, len);
-      for (std::size_t i = 0; i < Bpp; ++i) dst[i] = src[i];
-      for (std::size_t i = Bpp; i < len; ++i)
-        dst[i] = static_cast<unsigned char>(src[i] + dst[i - Bpp]);
-      return;
-    case 2:
-      unup(src, dst, prev, len);
-      return;
-    case 3:
-      if constexpr (Bpp == 4) return unavg4(src, dst, prev, len);
-      for (std::size_t i = 0; i < Bpp; ++i)
-        dst[i] = static_cast<unsigned char>(src[i] + (prev[i] >> 1));
-      for (std::size_t i = Bpp; i < len; ++i) {
-        dst[i] = static_cast<unsigned char>(src[i] + ((dst[i - Bpp] + prev[i]) >> 1));
-      }
-      return;
-    case 4:
-      if constexpr (Bpp == 4) {
-        if (has_sse41()) return unpaeth4(src, dst, prev, len);
-      }
-      for (std::size_t i = 0; i < Bpp; ++i) dst[i] = static_cast<unsigned char>(src[i] + prev[i]);
-      for (std::size_t i = Bpp; i < len; ++i) {
-        dst[i] = static_cast<unsigned char>(src[i] + paeth(dst[i - Bpp], prev[i], prev[i - Bpp]));
-      }
-      return;
-  }
-}
-
 FileError corrupt(const std::string& name, const char* why) {
   return FileError(fmt::format("{}: {}: truncated or corrupt PNG", name, why));
+}
+
+// Image data handed to inflate per call: each slice's CRC is computed just before inflate
+// reads it, so it comes from memory once and then from cache (a separate first pass over
+// all chunks read the compressed data twice); small enough to stay in L2, large enough that
+// ISA-L's cost per call (up to 64 KB of history copied) stays small.
+constexpr std::size_t kSlice = 128 << 10;
+
+// The CRC of a chunk's type, the start of its CRC.
+std::uint32_t type_crc(std::span<const unsigned char> data) {
+  return crc32_gzip_refl(0, data.data() - 4, 4);
 }
 
 }  // namespace
 
 // Checks the file against the one validity rule (png_layout.hpp): the chunks and their
-// CRCs here, in the same walk libspng's path makes; the zlib stream, its Adler-32 and each
-// row's filter as rows are read.
+// CRCs here, in the same walk libspng's path makes, but for the image data's; those, the zlib
+// stream, its Adler-32 and each row's filter as rows are read.
 std::optional<PngRows> PngRows::open(std::span<const unsigned char> png, const std::string& name) {
   // Only the fast kind, from IHDR alone; everything else (and what is not a PNG at all) is
   // the general decoder's to accept or refuse.
@@ -166,23 +51,84 @@ std::optional<PngRows> PngRows::open(std::span<const unsigned char> png, const s
   }
   const int depth = png[24], colour = png[25], interlace = png[28];
   if (depth != 8 || (colour != 2 && colour != 6) || interlace != 0) return std::nullopt;
-  PngLayout layout = walk_png(png, name);
+  PngLayout layout = walk_png(png, name, false);
   if (layout.has_plte || layout.has_trns) return std::nullopt;  // a colour key: libspng's
   PngRows out(name);
-  std::span<const unsigned char> stream = layout.idat.front();
-  if (layout.idat.size() > 1) {
-    out.joined_.reserve(layout.idat_bytes);
-    for (const auto& s : layout.idat) out.joined_.insert(out.joined_.end(), s.begin(), s.end());
-    stream = out.joined_;
-  }
+  out.idat_ = std::move(layout.idat);
+  out.crc_ = type_crc(out.idat_.front());
   out.width_ = layout.width, out.height_ = layout.height, out.bpp_ = colour == 6 ? 4 : 3;
   out.prev_.assign(out.row_len(), 0);
   out.state_ = std::make_unique<inflate_state>();
   isal_inflate_init(out.state_.get());
-  out.state_->next_in = const_cast<unsigned char*>(stream.data());
-  out.state_->avail_in = static_cast<std::uint32_t>(stream.size());
   out.state_->crc_flag = ISAL_ZLIB;
   return out;
+}
+
+// Counts the next n bytes of the current chunk as handed to inflate; checks the CRC of each
+// chunk that this completes (empty ones included).
+void PngRows::take(std::size_t n) {
+  crc_ = crc32_gzip_refl(crc_, idat_[chunk_].data() + taken_, n);
+  taken_ += n;
+  while (chunk_ < idat_.size() && taken_ == idat_[chunk_].size()) {
+    const std::span<const unsigned char> done = idat_[chunk_];
+    if (crc_ != be32(done.data() + done.size())) throw corrupt(name_, "IDAT chunk CRC mismatch");
+    taken_ = 0;
+    if (++chunk_ < idat_.size()) crc_ = type_crc(idat_[chunk_]);
+  }
+}
+
+void PngRows::take_rest() {
+  while (chunk_ < idat_.size()) take(idat_[chunk_].size() - taken_);
+}
+
+// Gives inflate its next slice of image data, if any is left.
+void PngRows::feed() {
+  if (chunk_ == idat_.size()) return;
+  inflate_state& s = *state_;
+  const std::span<const unsigned char> rest = idat_[chunk_].subspan(taken_);
+  if (rest.size() >= kSlice || chunk_ + 1 == idat_.size()) {
+    const std::size_t n = std::min(rest.size(), kSlice);
+    take(n);
+    s.next_in = const_cast<unsigned char*>(rest.data());
+    s.avail_in = static_cast<std::uint32_t>(n);
+    return;
+  }
+  // Many encoders (libpng) write 8 KB chunks: a call per chunk would copy more history than
+  // the chunk holds, so they are joined a slice at a time.
+  gathered_.resize(kSlice);
+  std::size_t n = 0;
+  while (n < kSlice && chunk_ < idat_.size()) {
+    const std::span<const unsigned char> part =
+        idat_[chunk_].subspan(taken_, std::min(idat_[chunk_].size() - taken_, kSlice - n));
+    std::memcpy(gathered_.data() + n, part.data(), part.size());
+    take(part.size());
+    n += part.size();
+  }
+  s.next_in = gathered_.data();
+  s.avail_in = static_cast<std::uint32_t>(n);
+}
+
+// A bad CRC in the image data is named first, wherever it lies, as when all of them were
+// checked before inflating.
+void PngRows::fail(const char* why) {
+  take_rest();
+  throw corrupt(name_, why);
+}
+
+// Inflates into out[0, n) until it is full or the stream ends; how many bytes it wrote.
+// `why` is the error for bad data.
+std::uint32_t PngRows::inflate(unsigned char* out, std::uint32_t n, const char* why) {
+  inflate_state& s = *state_;
+  s.next_out = out;
+  s.avail_out = n;
+  while (s.avail_out > 0 && s.block_state != ISAL_BLOCK_FINISH) {
+    if (s.avail_in == 0) feed();
+    // ISA-L may still hold output when no input is left: called until it makes no progress.
+    const std::uint32_t out_before = s.avail_out, in_before = s.avail_in;
+    if (isal_inflate(&s) != ISAL_DECOMP_OK) fail(why);
+    if (s.avail_out == out_before && s.avail_in == in_before) break;
+  }
+  return n - s.avail_out;
 }
 
 void PngRows::inflate_rows(unsigned char* raw, std::uint32_t rows) {
@@ -191,50 +137,30 @@ void PngRows::inflate_rows(unsigned char* raw, std::uint32_t rows) {
   }
   // At most 1 GiB + h bytes in all by kMaxImagePixels, so 32 bits suffice.
   const auto want = static_cast<std::uint32_t>((row_len() + 1) * rows);
-  inflate_state& s = *state_;
-  s.next_out = raw;
-  s.avail_out = want;
-  // isal_inflate returns when the output is full or the input ends; the rest of the
-  // stream after the last row is checked by finish().
-  if (isal_inflate(&s) != ISAL_DECOMP_OK || s.avail_out != 0) {
-    throw corrupt(name_, "bad or short image data");
-  }
+  if (inflate(raw, want, "bad or short image data") != want) fail("bad or short image data");
   for (std::uint32_t y = 0; y < rows; ++y) {
-    if (raw[y * (row_len() + 1)] > 4) throw corrupt(name_, "unknown row filter");
+    if (raw[y * (row_len() + 1)] > 4) fail("unknown row filter");
   }
   row_ += rows;
   if (row_ == height_) finish();
 }
 
-// After the last row the stream must end, with nothing more to inflate and a good Adler-32.
+// After the last row the stream must end, with nothing more to inflate and a good Adler-32;
+// image data after that end is not inflated, but its CRCs are checked.
 void PngRows::finish() {
-  inflate_state& s = *state_;
   unsigned char extra = 0;
-  s.next_out = &extra;
-  s.avail_out = 1;
-  const int rc = isal_inflate(&s);
-  if (rc != ISAL_DECOMP_OK || s.avail_out != 1) throw corrupt(name_, "bad image data");
-  if (s.block_state != ISAL_BLOCK_FINISH) throw corrupt(name_, "image data ends early");
+  if (inflate(&extra, 1, "bad image data") != 0) fail("bad image data");
+  if (state_->block_state != ISAL_BLOCK_FINISH) fail("image data ends early");
+  take_rest();
 }
 
 void PngRows::read(unsigned char* out, std::uint32_t rows) {
   const std::size_t len = row_len();
-  inflate_rows(out, rows);
-  // Row y unfilters to y * len, y + 1 bytes left of where it was inflated, so the same
-  // memory becomes the pixels: no second buffer and no extra pass. Each byte is written
-  // only after the bytes it overwrites have been read.
-  const unsigned char* prev = prev_.data();
-  for (std::uint32_t y = 0; y < rows; ++y) {
-    const unsigned char* row = out + y * (len + 1) + 1;
-    unsigned char* dst = out + y * len;
-    if (bpp_ == 4) {
-      unfilter<4>(row[-1], row, dst, prev, len);
-    } else {
-      unfilter<3>(row[-1], row, dst, prev, len);
-    }
-    prev = dst;
-  }
-  std::memcpy(prev_.data(), prev, len);
+  // Inflated a row into the buffer and unfiltered to its start, so the same memory becomes
+  // the pixels: no second buffer and no extra pass.
+  inflate_rows(out + len, rows);
+  unfilter_rows(out + len, out, prev_.data(), len, bpp_, rows);
+  std::memcpy(prev_.data(), out + (rows - 1) * len, len);
   if (bpp_ == 4) return;
   // RGB to RGBA from the last pixel back, as each pixel moves right.
   for (std::size_t i = std::size_t{rows} * width_; i-- > 0;) {

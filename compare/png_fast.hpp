@@ -26,21 +26,24 @@ namespace aosuite {
 // bytes must outlive it.
 class PngRows {
  public:
-  // Checks the chunks (and their CRCs); nullopt when the file is not a PNG or of a kind left
-  // to libspng.
+  // Checks the chunks (the image data's CRCs are checked as it is read); nullopt when the
+  // file is not a PNG or of a kind left to libspng.
   // Throws FileError for a corrupt or truncated file of its own kind.
   static std::optional<PngRows> open(std::span<const unsigned char> png, const std::string& name);
 
   std::uint32_t width() const { return width_; }
   std::uint32_t height() const { return height_; }
-  // The buffer read() needs for `rows` rows: the filtered rows are inflated into it too.
+  // The buffer read() needs for `rows` rows: the filtered rows are inflated into it too, a
+  // row from its start (png_unfilter.hpp).
   std::size_t band_bytes(std::uint32_t rows) const {
-    return std::size_t{rows} * std::max(row_len() + 1, std::size_t{width_} * 4);
+    return std::max((std::size_t{rows} + 1) * (row_len() + 1), std::size_t{rows} * width_ * 4);
   }
   // The next `rows` rows (1..rows left) as packed RGBA8 at the start of `out`
   // (band_bytes(rows) long).
-  // Reading the last row also checks that the stream ends there with a good checksum.
-  // Throws FileError for bad data, naming the file.
+  // Reading the last row also checks that the stream ends there with a good checksum, and
+  // the CRCs of any image data after that end.
+  // Throws FileError for bad data, naming the file; a CRC mismatch anywhere in the image
+  // data is what is reported when there is one, as if every CRC had been checked first.
   void read(unsigned char* out, std::uint32_t rows);
   // Checks the next `rows` rows as read() would, without unfiltering them.
   void skip(std::uint32_t rows);
@@ -49,12 +52,22 @@ class PngRows {
   explicit PngRows(std::string name) : name_(std::move(name)) {}
   std::size_t row_len() const { return std::size_t{width_} * std::size_t(bpp_); }
   void inflate_rows(unsigned char* raw, std::uint32_t rows);
+  std::uint32_t inflate(unsigned char* out, std::uint32_t n, const char* why);
+  void feed();
+  void take(std::size_t n);
+  void take_rest();  // checks the CRCs of all the image data not yet handed to inflate
+  [[noreturn]] void fail(const char* why);
   void finish();
 
   std::string name_;
   std::uint32_t width_ = 0, height_ = 0, row_ = 0;  // row_: rows read so far
   int bpp_ = 0;
-  std::vector<unsigned char> joined_;     // the IDAT chunks' data, when there are several
+  std::vector<std::span<const unsigned char>> idat_;  // the IDAT chunks' data, in order
+  // The chunk being handed to inflate, how much of it has been, and the CRC of its type and
+  // of those bytes.
+  std::size_t chunk_ = 0, taken_ = 0;
+  std::uint32_t crc_ = 0;
+  std::vector<unsigned char> gathered_;   // small chunks' data, joined for one inflate call
   std::vector<unsigned char> prev_;       // the last row unfiltered (zeros before row 0)
   std::unique_ptr<inflate_state> state_;  // 87 KB
 };

@@ -84,7 +84,8 @@ PngHeader peek_png_header(std::span<const unsigned char> png, const std::string&
   return {be32(&png[16]), be32(&png[20]), png[24], png[25], png[28]};
 }
 
-PngLayout walk_png(std::span<const unsigned char> png, const std::string& name) {
+PngLayout walk_png(std::span<const unsigned char> png, const std::string& name,
+                   bool check_idat_crcs) {
   const PngHeader h = peek_png_header(png, name);
   if (crc32_gzip_refl(0, &png[12], 17) != be32(&png[29])) corrupt(name, "IHDR CRC mismatch");
   if (h.width == 0 || h.height == 0 || h.width > 0x7fffffffu || h.height > 0x7fffffffu ||
@@ -111,7 +112,8 @@ PngLayout walk_png(std::span<const unsigned char> png, const std::string& name) 
     const unsigned char* type = &png[pos + 4];
     const std::size_t chunk_bytes = std::size_t{len} + 12;
     const bool critical = !(type[0] & 0x20);
-    if (critical && crc32_gzip_refl(0, type, len + 4) != be32(&png[pos + 8 + len])) {
+    const bool check_crc = critical && (check_idat_crcs || !is(type, "IDAT"));
+    if (check_crc && crc32_gzip_refl(0, type, len + 4) != be32(&png[pos + 8 + len])) {
       corrupt(name, fmt::format("{} chunk CRC mismatch", chunk_type(type)));
     }
     if (is(type, "IDAT")) {

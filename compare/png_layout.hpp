@@ -16,7 +16,8 @@
 //    and then ends with a good Adler-32 (compressed bytes after that end are ignored).
 //
 // Everything but the zlib stream is checked by walk_png, one pass over the chunk headers
-// that also verifies the critical chunks' CRCs, which a decoder had to do anyway.
+// that also verifies the critical chunks' CRCs, which a decoder had to do anyway. The fast
+// decoder checks the IDAT chunks' CRCs itself, as it hands their data to inflate.
 #pragma once
 
 #include <cstdint>
@@ -54,8 +55,10 @@ PngHeader peek_png_header(std::span<const unsigned char> png, const std::string&
 // Checks everything in the rule but the zlib stream's contents; throws FileError, naming
 // the file, otherwise. Also refuses a file whose image data is too short to possibly fill
 // the image (deflate expands at most 1032:1), so that a small file claiming a huge image
-// fails before anything is allocated for it.
-PngLayout walk_png(std::span<const unsigned char> png, const std::string& name);
+// fails before anything is allocated for it. With check_idat_crcs false the IDAT chunks'
+// CRCs are left to the caller.
+PngLayout walk_png(std::span<const unsigned char> png, const std::string& name,
+                   bool check_idat_crcs = true);
 
 // Checks the zlib header that starts the IDAT data (ISA-L does not check the window size).
 void check_zlib_header(const std::vector<std::span<const unsigned char>>& idat,

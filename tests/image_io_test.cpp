@@ -30,16 +30,18 @@ TEST(DecodePng, GreyGreyAlphaPaletteAndSixteenBit) {
 }
 
 TEST(DecodePng, EveryRowFilterForRgbAndRgba) {
-  // Rows cycle through None, Sub, Up, Average and Paeth, then repeat each filter (a row
-  // filtered against one filtered the same way); random samples exercise every predictor
-  // branch, values 0-3 the ties between predictors, the widths every loop tail. RGBA
-  // and RGB 8-bit take the ISA-L path.
+  // Rows cycle through None, Sub, Up, Average and Paeth, repeat each filter (a row
+  // filtered against one filtered the same way), then go through every ordered pair of
+  // Sub, Average and Paeth (unfiltered two rows at once); random samples exercise every
+  // predictor branch, values 0-3 the ties between predictors, the widths every loop tail.
+  // RGBA and RGB 8-bit take the ISA-L path.
   cv::RNG rng(5);
   // Ties that change Paeth's choice need a + 2b = 3c, which a small contiguous range hits.
-  const std::vector<int> filters{0, 1, 2, 3, 4, 0, 0, 1, 1, 2, 2, 3, 3, 4, 4, 4};
+  const std::vector<int> filters{0, 1, 2, 3, 4, 0, 0, 1, 1, 2, 2, 3, 3, 4, 4, 4, 2, 1,
+                                 1, 1, 3, 1, 4, 3, 1, 3, 3, 3, 4, 4, 1, 4, 3, 4, 4};
   for (int channels : {3, 4}) {
     for (int w : {1, 2, 3, 4, 5, 37, 74}) {
-      const int h = 23;
+      const int h = static_cast<int>(filters.size());
       const bool ties = w == 74;
       std::vector<Bytes> rows(h, Bytes(std::size_t(w) * channels));
       for (auto& r : rows)
@@ -90,6 +92,76 @@ TEST(PngRows, AnyBandSizeGivesTheWholeImage) {
           reader->read(buf.data(), n);
           ASSERT_EQ(std::memcmp(buf.data(), want.view().row(int(y)), std::size_t(n) * w * 4), 0)
               << channels << " channels, band " << band << ", rows from " << y;
+        }
+      }
+    }
+  }
+}
+
+// Image data larger than the fast reader's input slices, in one chunk, in libpng's 8 KB
+// chunks (joined a slice at a time) and in a mix: every layout decodes as libspng decodes
+// it, and a bad CRC anywhere in the image data is reported as such, even behind a zlib
+// error that inflate meets first.
+TEST(PngRows, ImageDataInChunksOfAnySizeHasEveryCrcChecked) {
+  cv::RNG rng(13);
+  const std::uint32_t w = 300, h = 400;  // noise: about 480 KB compressed
+  std::vector<Bytes> rows(h, Bytes(std::size_t{w} * 4));
+  for (auto& r : rows)
+    for (auto& v : r) v = static_cast<unsigned char>(rng.uniform(0, 256));
+  const Bytes one = make_png(w, h, 8, 6, rows, {}, {}, {0, 1, 2, 3, 4}, 4);
+  const std::size_t at = 8 + 25, len = test::be32(&one[at]);
+  const Bytes z(one.begin() + at + 8, one.begin() + at + 8 + long(len));
+  const RgbaImage want = decode_png_general(one, "one.png");
+  // The stream cut at `cuts`; where each chunk's data begins in the file, and its length.
+  struct Split {
+    Bytes png;
+    std::vector<std::pair<std::size_t, std::size_t>> chunks;
+  };
+  auto split = [&](const std::vector<std::size_t>& cuts) {
+    Split out{Bytes(one.begin(), one.begin() + long(at)), {}};
+    std::size_t from = 0;
+    for (std::size_t i = 0; i <= cuts.size(); ++i) {
+      const std::size_t to = i < cuts.size() ? cuts[i] : z.size();
+      out.chunks.emplace_back(out.png.size() + 8, to - from);
+      test::put_chunk(out.png, "IDAT", Bytes(z.begin() + long(from), z.begin() + long(to)));
+      from = to;
+    }
+    test::put_chunk(out.png, "IEND", {});
+    return out;
+  };
+  std::vector<std::size_t> small, mixed = {8192, 16384, 216384};
+  for (std::size_t c = 8192; c < z.size(); c += 8192) small.push_back(c);
+  for (std::size_t c = 224576; c < z.size(); c += 8192) mixed.push_back(c);
+  for (const auto& cuts : {std::vector<std::size_t>{}, small, mixed}) {
+    const Split s = split(cuts);
+    const std::string what = std::to_string(s.chunks.size()) + " chunks";
+    const RgbaImage got = decode_png(s.png, "split.png");
+    ASSERT_EQ(std::memcmp(got.data(), want.data(), want.view().bytes()), 0) << what;
+    EXPECT_EQ(check_png(s.png, "split.png").width, int(w)) << what;
+    Bytes bad_crc = s.png, behind_zlib_error = s.png;
+    bad_crc[s.chunks[s.chunks.size() / 2].first + 100] ^= 1;
+    // A reserved block type in the first chunk, under a good CRC; a bad CRC in the last.
+    const auto [first, first_len] = s.chunks.front();
+    behind_zlib_error[first + 2] |= 6;
+    const auto crc = static_cast<std::uint32_t>(
+        crc32(0, &behind_zlib_error[first - 4], static_cast<uInt>(first_len + 4)));
+    for (int i = 0; i < 4; ++i) {
+      behind_zlib_error[first + first_len + std::size_t(i)] =
+          static_cast<unsigned char>(crc >> (24 - 8 * i));
+    }
+    behind_zlib_error[s.chunks.back().first + 100] ^= 1;
+    for (const Bytes* bad : {&bad_crc, &behind_zlib_error}) {
+      for (const bool full : {true, false}) {
+        try {
+          if (full) {
+            decode_png(*bad, "bad.png");
+          } else {
+            check_png(*bad, "bad.png");
+          }
+          ADD_FAILURE() << what << ": no error";
+        } catch (const FileError& e) {
+          EXPECT_NE(std::string(e.what()).find("IDAT chunk CRC mismatch"), std::string::npos)
+              << what << ": " << e.what();
         }
       }
     }
