@@ -99,6 +99,11 @@ extern "C" __attribute__((visibility("default"))) int aosuite_read_exr(
     static const int threads = [] {
       const int n = int(std::max(1u, std::thread::hardware_concurrency()));
       Imf::setGlobalThreadCount(n);
+      // OpenEXR sizes its tables from the header before any pixel is read: a 300-byte file
+      // claiming a huge window would take gigabytes. No side over 32768 (aosuite refuses more
+      // than 2^28 pixels anyway) keeps a header's claims cheap to refuse.
+      Imf::Header::setMaxImageSize(32768, 32768);
+      Imf::Header::setMaxTileSize(32768, 32768);
       return n;
     }();
     Imf::InputFile in(stream, threads);

@@ -38,6 +38,7 @@ dictionary() {
     png_*) echo png ;;
     mesh_*) echo mesh ;;
     scene_* | suite_*) echo toml ;;
+    exr_*) echo exr ;;
     *) echo json ;;
   esac
 }
