@@ -9,6 +9,7 @@
 
 #include "compare/metric.hpp"
 #include "compare/metrics_cv.hpp"
+#include "compare/opencv.hpp"
 #include "tests/metric_pairs.hpp"
 
 namespace {
@@ -67,17 +68,10 @@ void BM_SsimRgb(benchmark::State& state) {
   set_pixels(state, p.a);
 }
 
-aosuite::Picture picture_of(const cv::Mat& rgba) {
-  aosuite::Picture p;
-  p.rgba = aosuite::RgbaImage(rgba.cols, rgba.rows);
-  std::copy_n(rgba.ptr<unsigned char>(), rgba.total() * 4, p.rgba.data());
-  return p;
-}
-
 // One registered metric on the 8-bit pair, as compare --metric and the harness call it.
 void BM_Metric(benchmark::State& state, const aosuite::metric::Metric* m) {
   const auto& p = pair_for(static_cast<int>(state.range(0)), false);
-  const aosuite::Picture a = picture_of(p.a), b = picture_of(p.b);
+  const aosuite::Picture a = aosuite::picture_of(p.a, "a"), b = aosuite::picture_of(p.b, "b");
   double value = 0;
   for (auto _ : state) {
     value = aosuite::metric::measure(*m, a, b).value(m->primary);

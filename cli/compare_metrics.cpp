@@ -8,16 +8,6 @@
 #include "compare/image_io.hpp"
 
 namespace aosuite::cli {
-namespace {
-
-metric::Gates& entry(MetricPlan& plan, const metric::Metric& m) {
-  for (metric::Gates& g : plan.metrics)
-    if (g.metric == &m) return g;
-  plan.metrics.push_back({&m, {}, false});
-  return plan.metrics.back();
-}
-
-}  // namespace
 
 MetricPlan plan_metrics(const std::vector<std::string>& names,
                         const std::vector<std::string>& gates, const std::string& heatmap) {
@@ -28,12 +18,12 @@ MetricPlan plan_metrics(const std::vector<std::string>& names,
     if (n == "resemble") {
       plan.resemble = true;
     } else {
-      entry(plan, metric::find(n));
+      metric::gates_for(plan.metrics, metric::find(n));
     }
   }
   for (const std::string& spec : gates) metric::add_gate_spec(plan.metrics, spec);
   plan.heatmap = heatmap;
-  if (!heatmap.empty()) entry(plan, metric::find("flip"));
+  if (!heatmap.empty()) metric::gates_for(plan.metrics, metric::find("flip"));
   return plan;
 }
 

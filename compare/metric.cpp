@@ -118,6 +118,12 @@ void add_gate(Gates& gates, std::string_view key, double value) {
   gates.limits.push_back(l);
 }
 
+Gates& gates_for(std::vector<Gates>& list, const Metric& m) {
+  for (Gates& g : list)
+    if (g.metric == &m) return g;
+  return list.emplace_back(Gates{&m, {}, false});
+}
+
 void add_gate_spec(std::vector<Gates>& list, std::string_view spec) {
   const std::size_t dot = spec.find('.'), eq = spec.find('=');
   if (dot == std::string_view::npos || eq == std::string_view::npos || eq < dot) {
@@ -136,9 +142,7 @@ void add_gate_spec(std::vector<Gates>& list, std::string_view spec) {
           fmt::format("--gate '{}': '{}' is not a finite number", spec, text));
     }
   }
-  auto it = std::find_if(list.begin(), list.end(), [&](const Gates& g) { return g.metric == &m; });
-  if (it == list.end()) it = list.insert(list.end(), Gates{&m, {}, false});
-  add_gate(*it, spec.substr(dot + 1, eq - dot - 1), value);
+  add_gate(gates_for(list, m), spec.substr(dot + 1, eq - dot - 1), value);
 }
 
 std::string Outcome::text() const {

@@ -79,6 +79,8 @@ struct Gates {
 };
 // Adds one `key = value` to `gates`; throws std::invalid_argument naming the accepted keys.
 void add_gate(Gates& gates, std::string_view key, double value);
+// The metric's entry in the list, added (with no limit) if it has none.
+Gates& gates_for(std::vector<Gates>& list, const Metric& m);
 // Adds a command line's `METRIC.KEY=VALUE` (VALUE a number, or true/false) to the list, to the
 // metric's entry if it has one. Throws std::invalid_argument, one line, for a bad spec.
 void add_gate_spec(std::vector<Gates>& list, std::string_view spec);

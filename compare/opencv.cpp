@@ -10,6 +10,13 @@ RgbaView view_of(const cv::Mat& rgba) {
   return {rgba.data, rgba.cols, rgba.rows};
 }
 
+Picture picture_of(const cv::Mat& rgba, std::string name) {
+  Picture p;
+  p.name = std::move(name);
+  p.rgba = copy_of(view_of(rgba));
+  return p;
+}
+
 cv::Mat to_mat(RgbaView rgba) {
   if (rgba.bytes() == 0) return {};
   cv::Mat m(rgba.height, rgba.width, CV_8UC4);

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "compare/image_io.hpp"
+#include "compare/picture.hpp"
 #include "compare/resemble.hpp"
 
 namespace aosuite {
@@ -17,6 +18,8 @@ namespace aosuite {
 // A continuous CV_8UC4 mat as a view (throws cv::Exception for any other kind).
 RgbaView view_of(const cv::Mat& rgba);
 cv::Mat to_mat(RgbaView rgba);  // a CV_8UC4 copy; an empty mat for an empty view
+// A continuous CV_8UC4 mat as an 8-bit Picture for the metrics (a copy of its pixels).
+Picture picture_of(const cv::Mat& rgba, std::string name);
 
 cv::Mat decode_png_rgba8(std::span<const unsigned char> png, const std::string& name);
 cv::Mat read_png_rgba8(const std::filesystem::path& path);

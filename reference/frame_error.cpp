@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "compare/metric.hpp"
+#include "compare/opencv.hpp"
 
 namespace aosuite::reference {
 namespace {
@@ -17,16 +18,6 @@ unsigned char to_srgb8(float c) {
   c = std::clamp(c, 0.0f, 1.0f);
   const float s = c < 0.0031308f ? c * 12.92f : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
   return static_cast<unsigned char>(std::lround(s * 255.0f));
-}
-
-Picture picture_of(const cv::Mat& rgba, const char* name) {
-  Picture p;
-  p.name = name;
-  p.rgba = RgbaImage(rgba.cols, rgba.rows);
-  for (int y = 0; y < rgba.rows; ++y)
-    std::copy_n(rgba.ptr<unsigned char>(y), std::size_t(rgba.cols) * 4,
-                p.rgba.data() + std::size_t(y) * std::size_t(rgba.cols) * 4);
-  return p;
 }
 
 }  // namespace
