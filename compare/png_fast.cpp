@@ -158,8 +158,8 @@ void PngRows::read(unsigned char* out, std::uint32_t rows) {
   const std::size_t len = row_len();
   // Inflated a row into the buffer and unfiltered to its start, so the same memory becomes
   // the pixels: no second buffer and no extra pass.
-  inflate_rows(out + len, rows);
-  unfilter_rows(out + len, out, prev_.data(), len, bpp_, rows);
+  inflate_rows(out + kUnfilterRoomRows * len, rows);
+  unfilter_rows(out + kUnfilterRoomRows * len, out, prev_.data(), len, bpp_, rows);
   std::memcpy(prev_.data(), out + (rows - 1) * len, len);
   if (bpp_ == 4) return;
   // RGB to RGBA from the last pixel back, as each pixel moves right.

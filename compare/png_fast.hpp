@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "compare/png_unfilter.hpp"
 #include "compare/rgba_image.hpp"
 
 namespace aosuite {
@@ -33,10 +34,11 @@ class PngRows {
 
   std::uint32_t width() const { return width_; }
   std::uint32_t height() const { return height_; }
-  // The buffer read() needs for `rows` rows: the filtered rows are inflated into it too, a
-  // row from its start (png_unfilter.hpp).
+  // The buffer read() needs for `rows` rows: the filtered rows are inflated into it too,
+  // kUnfilterRoomRows rows from its start (png_unfilter.hpp).
   std::size_t band_bytes(std::uint32_t rows) const {
-    return std::max((std::size_t{rows} + 1) * (row_len() + 1), std::size_t{rows} * width_ * 4);
+    return std::max((std::size_t{rows} + kUnfilterRoomRows) * (row_len() + 1),
+                    std::size_t{rows} * width_ * 4);
   }
   // The next `rows` rows (1..rows left) as packed RGBA8 at the start of `out`
   // (band_bytes(rows) long).
