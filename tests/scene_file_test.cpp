@@ -291,6 +291,45 @@ TEST_F(MeshFiles, CountsBeyondTheFileAreRefusedAtOnce) {
   }
 }
 
+TEST_F(MeshFiles, AsciiPlyIsReadALineAnEntryAsAssimpReadsIt) {
+  // \r\n line ends, one empty line after a line, and words after an entry's last property
+  // are read as assimp reads them: the same tetrahedron.
+  const std::string lf = tetra_ascii_ply();
+  std::string crlf = std::regex_replace(lf, std::regex("\n"), "\r\n");
+  std::string gaps = lf;
+  gaps.replace(gaps.find("\n0 1 0\n"), 7, "\n\n0 1 0 7 junk\n");  // an empty line skipped
+  for (const auto& [name, text] : {std::pair{"crlf.ply", crlf}, std::pair{"gaps.ply", gaps}}) {
+    const Mesh m = load_mesh(file(name, text));
+    ASSERT_EQ(m.positions.size(), 4u) << name;
+    for (int i = 0; i < 4; ++i)
+      expect_near(m.positions[i], {kTetra[i][0], kTetra[i][1], kTetra[i][2]});
+    EXPECT_EQ(m.triangles.size(), 4u) << name;
+  }
+  // A list's length is held to the words on its own line. mesh_fuzz found a vertex list whose
+  // length assimp read from a 24-digit word (its 3 vertices spread over other lines): 26 GB.
+  std::string spread = lf;
+  spread.replace(spread.find("3 0 2 1\n"), 8, "3 0\n2 1\n");  // a face over two lines
+  std::string lying = lf;
+  lying.replace(lying.find("3 0 2 1\n"), 8, "200 0 2 1\n");
+  std::string fuzzed = std::string("ply\nformat ascii 1.0\nelement vertex 3\n") +
+                       "property float x\nproperty float z\nproperty float nx\n" +
+                       "property list uchar uint vertex_indices\nend_header\n" +
+                       "0 0 0 0 0 1\n1 0 0 0777777777777777777777777 0 1\n0 1 0 0 0 1\n";
+  for (const auto& [name, text, expected] :
+       std::vector<std::tuple<std::string, std::string, std::string>>{
+           {"spread.ply", spread, ":14: element 'face' 1 of 4: a list of 3 values with 1 left"},
+           {"lying.ply", lying, ":14: element 'face' 1 of 4: a list of 200 values with 3 left"},
+           {"fuzzed.ply", fuzzed,
+            ":10: element 'vertex' 2 of 3: '0777777777777777777777777' is not a valid list length"},
+           {"cr.ply", std::regex_replace(lf, std::regex("\n0 1 0\n"), "\n0 1 0\r"),
+            "lone carriage return"}}) {
+    const fs::path p = file(name, text);
+    const std::string e = error_of([&] { load_mesh(p); });
+    expect_clean_message(e, p);
+    EXPECT_NE(e.find(expected), std::string::npos) << e;
+  }
+}
+
 TEST_F(MeshFiles, OffVariantsAreReadAsAssimpReadsThem) {
   // 4OFF divides by w, nOFF gives the dimension (missing coordinates are 0), STOFF, COFF and
   // NOFF carry more per vertex, and comment lines may sit between header tokens.

@@ -78,6 +78,18 @@ std::optional<T> parse(std::string_view t) {
   return v;
 }
 
+// The space- or tab-separated words of one line, as assimp splits a line of values.
+std::vector<std::string_view> words(std::string_view l) {
+  std::vector<std::string_view> out;
+  for (std::size_t i = 0; i < l.size();) {
+    while (i < l.size() && (l[i] == ' ' || l[i] == '\t')) ++i;
+    const std::size_t start = i;
+    while (i < l.size() && l[i] != ' ' && l[i] != '\t') ++i;
+    if (i > start) out.push_back(l.substr(start, i - start));
+  }
+  return out;
+}
+
 std::string_view as_text(std::span<const unsigned char> bytes) {
   return {reinterpret_cast<const char*>(bytes.data()), bytes.size()};
 }
@@ -182,20 +194,66 @@ void check_counts(const Tokens& in, const PlyHeader& h, std::uint64_t room, std:
   }
 }
 
-void check_ply_ascii(const PlyHeader& h, Tokens& in, std::string_view body, int last_line) {
-  // One entry per line: no more entries than lines.
+// ASCII PLY as assimp 5.2 reads it (PlyParser.cpp, IOStreamBuffer::getNextLine): an entry
+// per line, whose values are the space- or tab-separated words of that line (words after its
+// last property are ignored). A line ends at \r or \n; reading the next line first skips to
+// past the next \n if it stands on a line end, which passes over the \n of a \r\n, or over one
+// empty line after a \n. A list's length is checked against the words left on its line: assimp
+// allocates for the length before reading the items, so a lying length, or one read from the
+// wrong word, would otherwise take gigabytes. assimp also ends lines at a lone \r, \f or NUL:
+// those are refused, so that the checks and assimp cut the text alike.
+void check_ply_ascii(const PlyHeader& h, Tokens& in, std::string_view text, int last_line) {
+  const auto line_of = [&](std::size_t pos) {
+    return 1 + static_cast<int>(std::count(text.begin(), text.begin() + long(pos), '\n'));
+  };
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (c == '\0' || c == '\f' || (c == '\r' && (i + 1 == text.size() || text[i + 1] != '\n'))) {
+      in.fail_at(line_of(i), "a NUL, form feed or lone carriage return (assimp ends a line there)");
+    }
+  }
+  // One entry per line: no more entries than lines, before any count is looped over.
+  const std::string_view body = text.substr(h.body);
   const auto lines = static_cast<std::uint64_t>(std::count(body.begin(), body.end(), '\n')) +
                      (!body.empty() && body.back() != '\n');
   check_counts(in, h, lines, "lines", last_line);
+  // Where assimp stands after the end_header line: past its \r if it ends in \r\n.
+  std::size_t pos = h.body >= 2 && text[h.body - 2] == '\r' ? h.body - 1 : h.body;
+  // The line being read, as a text editor numbers it: newlines are counted up to `counted`.
+  std::size_t counted = pos;
+  int line = line_of(pos);
+  const auto next_line = [&] {
+    if (pos < text.size() && (text[pos] == '\r' || text[pos] == '\n')) {
+      pos = std::min(text.find('\n', pos), text.size()) + 1;
+    }
+    const std::size_t start = std::min(pos, text.size());
+    const std::size_t end = std::min(text.find_first_of("\r\n", start), text.size());
+    pos = end + 1;
+    line += static_cast<int>(
+        std::count(text.begin() + long(counted), text.begin() + long(start), '\n'));
+    counted = start;
+    return text.substr(start, end - start);
+  };
   for (const PlyElement& e : h.elements) {
-    // Entries with no properties have nothing to check (nor any token to consume).
     for (std::uint64_t i = 0; i < e.count && !e.properties.empty(); ++i) {
-      const auto what = [&] {
-        return fmt::format("element '{}' {} of {}", e.name, i + 1, e.count);
+      const std::vector<std::string_view> w = words(next_line());
+      const auto fail = [&](const std::string& why) {
+        in.fail_at(line, fmt::format("element '{}' {} of {}: {}", e.name, i + 1, e.count, why));
+      };
+      std::size_t k = 0;
+      const auto value = [&](auto parse_word, const char* what) {
+        if (k == w.size()) fail(fmt::format("the line ends before its {}", what));
+        const auto v = parse_word(w[k]);
+        if (!v) fail(fmt::format("'{}' is not a valid {}", w[k].substr(0, 64), what));
+        ++k;
+        return *v;
       };
       for (const PlyProperty& p : e.properties) {
-        const std::uint64_t n = p.count_size ? in.number<std::uint64_t>(what) : 1;
-        for (std::uint64_t k = 0; k < n; ++k) in.number<double>(what);
+        const std::uint64_t n = p.count_size ? value(parse<std::uint64_t>, "list length") : 1;
+        if (n > w.size() - k) {
+          fail(fmt::format("a list of {} values with {} left on its line", n, w.size() - k));
+        }
+        for (std::uint64_t j = 0; j < n; ++j) value(parse<double>, "value");
       }
     }
   }
@@ -244,7 +302,7 @@ void check_ply(std::string_view name, std::span<const unsigned char> bytes) {
   const PlyHeader h = parse_ply_header(in);
   if (h.body > bytes.size()) in.fail("truncated: no data after end_header");
   const int last_line = 1 + static_cast<int>(std::count(text.begin(), text.end(), '\n'));
-  if (h.format == PlyFormat::kAscii) return check_ply_ascii(h, in, text.substr(h.body), last_line);
+  if (h.format == PlyFormat::kAscii) return check_ply_ascii(h, in, text, last_line);
   // No more entries than bytes (an entry of no properties counts as one, so a file cannot
   // declare 2^64 empty ones either).
   check_counts(in, h, bytes.size() - h.body, "bytes", last_line);
@@ -338,17 +396,6 @@ void check_off(std::string_view name, std::span<const unsigned char> bytes) {
   }
   pos = body, line = body_line;
 
-  // Space- or tab-separated words of one line.
-  const auto words = [](std::string_view l) {
-    std::vector<std::string_view> out;
-    for (std::size_t i = 0; i < l.size();) {
-      while (i < l.size() && (l[i] == ' ' || l[i] == '\t')) ++i;
-      const std::size_t start = i;
-      while (i < l.size() && l[i] != ' ' && l[i] != '\t') ++i;
-      if (i > start) out.push_back(l.substr(start, i - start));
-    }
-    return out;
-  };
   const std::size_t coordinates = dimensions + (homogeneous ? 1 : 0);
   for (std::uint64_t i = 0; i < vertices; ++i) {
     const Line l = *next_line();
