@@ -311,6 +311,15 @@ TEST_F(MeshFiles, AsciiPlyIsReadALineAnEntryAsAssimpReadsIt) {
   spread.replace(spread.find("3 0 2 1\n"), 8, "3 0\n2 1\n");  // a face over two lines
   std::string lying = lf;
   lying.replace(lying.find("3 0 2 1\n"), 8, "200 0 2 1\n");
+  // And one that mesh_fuzz found next: a 25-digit coordinate, which assimp reads as 0 without
+  // moving on, so that its list length came from those digits.
+  std::string long_digits = lf;
+  long_digits.replace(long_digits.find("\n1 0 0\n"), 7, "\n1 0000077777777777777777777777 0\n");
+  std::string long_exponent = lf;
+  long_exponent.replace(long_exponent.find("\n1 0 0\n"), 7, "\n1 0 1e99999999999999999999\n");
+  std::string long_fraction = lf;  // a fraction's digits are read only as far as they matter
+  long_fraction.replace(long_fraction.find("\n1 0 0\n"), 7, "\n1 0 0.00000000000000000000000\n");
+  EXPECT_EQ(load_mesh(file("fraction.ply", long_fraction)).positions.size(), 4u);
   std::string fuzzed = std::string("ply\nformat ascii 1.0\nelement vertex 3\n") +
                        "property float x\nproperty float z\nproperty float nx\n" +
                        "property list uchar uint vertex_indices\nend_header\n" +
@@ -321,6 +330,10 @@ TEST_F(MeshFiles, AsciiPlyIsReadALineAnEntryAsAssimpReadsIt) {
            {"lying.ply", lying, ":14: element 'face' 1 of 4: a list of 200 values with 3 left"},
            {"fuzzed.ply", fuzzed,
             ":10: element 'vertex' 2 of 3: '0777777777777777777777777' is not a valid list length"},
+           {"digits.ply", long_digits,
+            ":11: element 'vertex' 2 of 4: '0000077777777777777777777777' is not a valid value"},
+           {"exponent.ply", long_exponent,
+            ":11: element 'vertex' 2 of 4: '1e99999999999999999999' is not a valid value"},
            {"cr.ply", std::regex_replace(lf, std::regex("\n0 1 0\n"), "\n0 1 0\r"),
             "lone carriage return"}}) {
     const fs::path p = file(name, text);

@@ -194,6 +194,24 @@ void check_counts(const Tokens& in, const PlyHeader& h, std::uint64_t room, std:
   }
 }
 
+// A value of an ASCII PLY entry, if assimp reads it as a whole word too. Its number reader
+// (fast_atoreal_move) reads an integer part or exponent of 2^64 or more as 0 and stays where it
+// was, so the next value would be read from the same digits (mesh_fuzz: a list length read from
+// a 25-digit coordinate, 26 GB); a fraction's digits are read only as far as they matter.
+std::optional<double> parse_ply_value(std::string_view word) {
+  for (std::size_t i = 0; i < word.size();) {
+    const std::size_t start = i;
+    while (i < word.size() && word[i] >= '0' && word[i] <= '9') ++i;
+    if (i == start) {
+      ++i;
+    } else if ((start == 0 || word[start - 1] != '.') &&
+               !parse<std::uint64_t>(word.substr(start, i - start))) {
+      return std::nullopt;
+    }
+  }
+  return parse<double>(word);
+}
+
 // ASCII PLY as assimp 5.2 reads it (PlyParser.cpp, IOStreamBuffer::getNextLine): an entry
 // per line, whose values are the space- or tab-separated words of that line (words after its
 // last property are ignored). A line ends at \r or \n; reading the next line first skips to
@@ -253,7 +271,7 @@ void check_ply_ascii(const PlyHeader& h, Tokens& in, std::string_view text, int 
         if (n > w.size() - k) {
           fail(fmt::format("a list of {} values with {} left on its line", n, w.size() - k));
         }
-        for (std::uint64_t j = 0; j < n; ++j) value(parse<double>, "value");
+        for (std::uint64_t j = 0; j < n; ++j) value(parse_ply_value, "value");
       }
     }
   }
