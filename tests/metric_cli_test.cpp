@@ -183,6 +183,40 @@ TEST(MetricCli, NonFiniteFloatsAreCountedAndFailUnlessAllowed) {
 }
 
 // One line naming the file and the problem, exit 2, nothing written.
+// OpenEXR allocates an attribute's declared size before reading it: each size is held to the
+// bytes left in the file first (exr_fuzz: 35 bytes claiming 1.7 GB), in every part's header.
+TEST(MetricCli, ExrAttributeSizesAreHeldToTheFile) {
+  test::TempDir dir;
+  std::string claims("\x76\x2f\x31\x01\x02\0\0\0capDate\0strifg\0", 23);
+  claims += "linexx";  // "line": a size of 1701734764, little-endian
+  const std::string bad = (dir.path() / "claims.exr").string();
+  std::ofstream(bad) << claims;
+  const Outcome refused = compare(dir, bad + " " + bad + " --metric rmse");
+  EXPECT_EQ(refused.rc, 2);
+  EXPECT_NE(refused.err.find("claims.exr: not a readable EXR file (an attribute claims 1701734764 "
+                             "bytes, more than the 2 left in the file)"),
+            std::string::npos)
+      << refused.err;
+  // Two parts (OpenEXR wants one display window for all), two headers: the walk goes on
+  // past the first header's end into the second.
+  OIIO::ImageSpec specs[2] = {OIIO::ImageSpec(4, 4, 1, OIIO::TypeDesc::FLOAT),
+                              OIIO::ImageSpec(4, 4, 1, OIIO::TypeDesc::FLOAT)};
+  for (int i = 0; i < 2; ++i) {
+    specs[i].channelnames = {"Y"};
+    specs[i].attribute("oiio:subimagename", i ? "second" : "first");
+  }
+  const std::string parts = (dir.path() / "parts.exr").string();
+  auto out = OIIO::ImageOutput::create(parts);
+  const std::vector<float> px(16, 0.5f);
+  ASSERT_TRUE(out && out->open(parts, 2, specs) &&
+              out->write_image(OIIO::TypeDesc::FLOAT, px.data()) &&
+              out->open(parts, specs[1], OIIO::ImageOutput::AppendSubimage) &&
+              out->write_image(OIIO::TypeDesc::FLOAT, px.data()) && out->close());
+  const Outcome read = compare(dir, parts + " " + parts + " --metric rmse");
+  EXPECT_EQ(read.rc, 0) << read.err;
+  EXPECT_NE(read.out.find("rmse: value 0"), std::string::npos) << read.out;
+}
+
 TEST(MetricCli, BadInputIsOneLineAndWritesNothing) {
   test::TempDir dir;
   write_png_rgba8(dir / "small.png", cv::Mat(4, 4, CV_8UC4, cv::Scalar::all(9)));
