@@ -2,7 +2,6 @@
 
 #include <fmt/format.h>
 #include <isa-l/crc.h>
-#include <isa-l/igzip_lib.h>
 
 #include <cstdint>
 #include <cstring>
@@ -25,10 +24,9 @@ FileError corrupt(const std::string& name, const char* why) {
   return FileError(fmt::format("{}: {}: truncated or corrupt PNG", name, why));
 }
 
-// Image data handed to inflate per call: each slice's CRC is computed just before inflate
+// Image data handed to inflate at a time: each slice's CRC is computed just before inflate
 // reads it, so it comes from memory once and then from cache (a separate first pass over
-// all chunks read the compressed data twice); small enough to stay in L2, large enough that
-// ISA-L's cost per call (up to 64 KB of history copied) stays small.
+// all chunks read the compressed data twice).
 constexpr std::size_t kSlice = 128 << 10;
 
 // The CRC of a chunk's type, the start of its CRC.
@@ -37,6 +35,52 @@ std::uint32_t type_crc(std::span<const unsigned char> data) {
 }
 
 }  // namespace
+
+// The image data, a slice at a time; each chunk's CRC is checked once all of it was handed
+// over.
+struct PngRows::Feed {
+  std::string name;
+  std::vector<std::span<const unsigned char>> idat;  // the IDAT chunks' data, in order
+  // The chunk being handed over, how much of it has been, and the CRC of its type and of
+  // those bytes.
+  std::size_t chunk = 0, taken = 0;
+  std::uint32_t crc = 0;
+
+  // Counts the next n bytes of the current chunk as handed over; checks the CRC of each
+  // chunk that this completes (empty ones included).
+  void take(std::size_t n) {
+    crc = crc32_gzip_refl(crc, idat[chunk].data() + taken, n);
+    taken += n;
+    while (chunk < idat.size() && taken == idat[chunk].size()) {
+      const std::span<const unsigned char> done = idat[chunk];
+      if (crc != be32(done.data() + done.size())) throw corrupt(name, "IDAT chunk CRC mismatch");
+      taken = 0;
+      if (++chunk < idat.size()) crc = type_crc(idat[chunk]);
+    }
+  }
+  void take_rest() {
+    while (chunk < idat.size()) take(idat[chunk].size() - taken);
+  }
+  // The next slice (empty at the end); small chunks are handed over as they are, since
+  // inflate costs nothing per piece beyond its last few bytes.
+  std::span<const unsigned char> next() {
+    while (chunk < idat.size()) {
+      const std::span<const unsigned char> rest = idat[chunk].subspan(taken);
+      const std::size_t n = std::min(rest.size(), kSlice);
+      take(n);  // an empty chunk is only checked
+      if (n > 0) return rest.first(n);
+    }
+    return {};
+  }
+};
+
+PngRows::PngRows(std::string name)
+    : name_(name),
+      feed_(std::make_unique<Feed>(Feed{std::move(name), {}, 0, 0, 0})),
+      inflater_([feed = feed_.get()] { return feed->next(); }) {}
+PngRows::PngRows(PngRows&&) noexcept = default;
+PngRows& PngRows::operator=(PngRows&&) noexcept = default;
+PngRows::~PngRows() = default;
 
 // Checks the file against the one validity rule (png_layout.hpp): the chunks and their
 // CRCs here, in the same walk libspng's path makes, but for the image data's; those, the zlib
@@ -54,81 +98,26 @@ std::optional<PngRows> PngRows::open(std::span<const unsigned char> png, const s
   PngLayout layout = walk_png(png, name, false);
   if (layout.has_plte || layout.has_trns) return std::nullopt;  // a colour key: libspng's
   PngRows out(name);
-  out.idat_ = std::move(layout.idat);
-  out.crc_ = type_crc(out.idat_.front());
+  out.feed_->idat = std::move(layout.idat);
+  out.feed_->crc = type_crc(out.feed_->idat.front());
   out.width_ = layout.width, out.height_ = layout.height, out.bpp_ = colour == 6 ? 4 : 3;
   out.prev_.assign(out.row_len(), 0);
-  out.state_ = std::make_unique<inflate_state>();
-  isal_inflate_init(out.state_.get());
-  out.state_->crc_flag = ISAL_ZLIB;
   return out;
-}
-
-// Counts the next n bytes of the current chunk as handed to inflate; checks the CRC of each
-// chunk that this completes (empty ones included).
-void PngRows::take(std::size_t n) {
-  crc_ = crc32_gzip_refl(crc_, idat_[chunk_].data() + taken_, n);
-  taken_ += n;
-  while (chunk_ < idat_.size() && taken_ == idat_[chunk_].size()) {
-    const std::span<const unsigned char> done = idat_[chunk_];
-    if (crc_ != be32(done.data() + done.size())) throw corrupt(name_, "IDAT chunk CRC mismatch");
-    taken_ = 0;
-    if (++chunk_ < idat_.size()) crc_ = type_crc(idat_[chunk_]);
-  }
-}
-
-void PngRows::take_rest() {
-  while (chunk_ < idat_.size()) take(idat_[chunk_].size() - taken_);
-}
-
-// Gives inflate its next slice of image data, if any is left.
-void PngRows::feed() {
-  if (chunk_ == idat_.size()) return;
-  inflate_state& s = *state_;
-  const std::span<const unsigned char> rest = idat_[chunk_].subspan(taken_);
-  if (rest.size() >= kSlice || chunk_ + 1 == idat_.size()) {
-    const std::size_t n = std::min(rest.size(), kSlice);
-    take(n);
-    s.next_in = const_cast<unsigned char*>(rest.data());
-    s.avail_in = static_cast<std::uint32_t>(n);
-    return;
-  }
-  // Many encoders (libpng) write 8 KB chunks: a call per chunk would copy more history than
-  // the chunk holds, so they are joined a slice at a time.
-  gathered_.resize(kSlice);
-  std::size_t n = 0;
-  while (n < kSlice && chunk_ < idat_.size()) {
-    const std::span<const unsigned char> part =
-        idat_[chunk_].subspan(taken_, std::min(idat_[chunk_].size() - taken_, kSlice - n));
-    std::memcpy(gathered_.data() + n, part.data(), part.size());
-    take(part.size());
-    n += part.size();
-  }
-  s.next_in = gathered_.data();
-  s.avail_in = static_cast<std::uint32_t>(n);
 }
 
 // A bad CRC in the image data is named first, wherever it lies, as when all of them were
 // checked before inflating.
 void PngRows::fail(const char* why) {
-  take_rest();
+  feed_->take_rest();
   throw corrupt(name_, why);
 }
 
 // Inflates into out[0, n) until it is full or the stream ends; how many bytes it wrote.
 // `why` is the error for bad data.
-std::uint32_t PngRows::inflate(unsigned char* out, std::uint32_t n, const char* why) {
-  inflate_state& s = *state_;
-  s.next_out = out;
-  s.avail_out = n;
-  while (s.avail_out > 0 && s.block_state != ISAL_BLOCK_FINISH) {
-    if (s.avail_in == 0) feed();
-    // ISA-L may still hold output when no input is left: called until it makes no progress.
-    const std::uint32_t out_before = s.avail_out, in_before = s.avail_in;
-    if (isal_inflate(&s) != ISAL_DECOMP_OK) fail(why);
-    if (s.avail_out == out_before && s.avail_in == in_before) break;
-  }
-  return n - s.avail_out;
+std::size_t PngRows::inflate(unsigned char* out, std::size_t n, const char* why) {
+  const std::size_t got = inflater_.inflate(out, n);
+  if (inflater_.bad()) fail(inflater_.ran_out() ? "image data ends early" : why);
+  return got;
 }
 
 void PngRows::inflate_rows(unsigned char* raw, std::uint32_t rows) {
@@ -136,7 +125,7 @@ void PngRows::inflate_rows(unsigned char* raw, std::uint32_t rows) {
     throw std::logic_error("PngRows: reads must be 1.. rows left");
   }
   // At most 1 GiB + h bytes in all by kMaxImagePixels, so 32 bits suffice.
-  const auto want = static_cast<std::uint32_t>((row_len() + 1) * rows);
+  const std::size_t want = (row_len() + 1) * rows;
   if (inflate(raw, want, "bad or short image data") != want) fail("bad or short image data");
   for (std::uint32_t y = 0; y < rows; ++y) {
     if (raw[y * (row_len() + 1)] > 4) fail("unknown row filter");
@@ -150,8 +139,8 @@ void PngRows::inflate_rows(unsigned char* raw, std::uint32_t rows) {
 void PngRows::finish() {
   unsigned char extra = 0;
   if (inflate(&extra, 1, "bad image data") != 0) fail("bad image data");
-  if (state_->block_state != ISAL_BLOCK_FINISH) fail("image data ends early");
-  take_rest();
+  if (!inflater_.ended()) fail("image data ends early");
+  feed_->take_rest();
 }
 
 void PngRows::read(unsigned char* out, std::uint32_t rows) {
@@ -170,7 +159,7 @@ void PngRows::read(unsigned char* out, std::uint32_t rows) {
 }
 
 void PngRows::skip(std::uint32_t rows) {
-  constexpr std::size_t kScratch = 64 << 10;  // 16 pages; ISA-L's cost per call stays small
+  constexpr std::size_t kScratch = 64 << 10;  // 16 pages
   const auto band =
       static_cast<std::uint32_t>(std::max<std::size_t>(1, kScratch / (row_len() + 1)));
   std::vector<unsigned char> raw(std::size_t{std::min(band, rows)} * (row_len() + 1));
