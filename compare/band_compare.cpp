@@ -12,8 +12,8 @@
 namespace aosuite {
 namespace {
 
-// A band's pixels per image: large enough that ISA-L's per-call cost (about 64 KB of history
-// copied) is a few per cent, small enough that a band read is still in L2 when counted.
+// A band's pixels per image: large enough that the inflater's per-call cost (its 32 KB window
+// kept) is a few per cent, small enough that a band read is still in L2 when counted.
 constexpr std::size_t kBandBytes = 128 << 10;
 // Bands in flight per image: a decoder may run this many bands ahead of the counting.
 constexpr std::uint32_t kSlots = 4;

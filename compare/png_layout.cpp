@@ -2,13 +2,13 @@
 
 #include <fmt/format.h>
 #include <isa-l/crc.h>
-#include <isa-l/igzip_lib.h>
 
 #include <cstring>
 #include <memory>
 
 #include "common/printable.hpp"
 #include "compare/image_io.hpp"
+#include "compare/inflate.hpp"
 
 namespace aosuite {
 namespace {
@@ -156,51 +156,27 @@ PngLayout walk_png(std::span<const unsigned char> png, const std::string& name,
     corrupt(name, fmt::format("{} bytes of image data cannot fill {}x{} pixels", out.idat_bytes,
                               out.width, out.height));
   }
-  check_zlib_header(out.idat, name);
   return out;
 }
 
-void check_zlib_header(const std::vector<std::span<const unsigned char>>& idat,
-                       const std::string& name) {
-  // The header's two bytes, which may straddle IDAT chunks.
-  unsigned char header[2];
-  std::size_t have = 0;
-  for (const auto& chunk : idat) {
-    for (std::size_t i = 0; i < chunk.size() && have < 2; ++i) header[have++] = chunk[i];
-    if (have == 2) break;
-  }
-  if (have < 2) corrupt(name, "bad image data");
-  const unsigned cmf = header[0], flg = header[1];
-  // zlib's window size (CINFO) above 32 KB is invalid; ISA-L does not check it, zlib does.
-  if ((cmf & 0x0f) != 8 || (cmf >> 4) > 7 || (cmf << 8 | flg) % 31 != 0 || (flg & 0x20)) {
-    corrupt(name, "bad image data");
-  }
-}
-
 void check_png_stream(const PngLayout& layout, const std::string& name) {
-  auto state = std::make_unique<inflate_state>();
-  isal_inflate_init(state.get());
-  state->crc_flag = ISAL_ZLIB;
+  std::size_t chunk = 0;
+  Inflater inflater([&]() -> std::span<const unsigned char> {
+    while (chunk < layout.idat.size() && layout.idat[chunk].empty()) ++chunk;
+    return chunk < layout.idat.size() ? layout.idat[chunk++] : std::span<const unsigned char>{};
+  });
   constexpr std::size_t kScratch = 64 << 10;
   const auto scratch = std::make_unique<unsigned char[]>(kScratch);
   const std::uint64_t want = layout.filtered_bytes();
   std::uint64_t got = 0;
-  for (const auto& chunk : layout.idat) {
-    if (state->block_state == ISAL_BLOCK_FINISH) break;  // compressed bytes after the end
-    state->next_in = const_cast<unsigned char*>(chunk.data());
-    state->avail_in = static_cast<std::uint32_t>(chunk.size());
-    // Until this chunk is used up and ISA-L has no more output pending (a full buffer).
-    do {
-      state->next_out = scratch.get();
-      state->avail_out = static_cast<std::uint32_t>(kScratch);
-      if (isal_inflate(state.get()) != ISAL_DECOMP_OK) corrupt(name, "bad image data");
-      got += kScratch - state->avail_out;
-      if (got > want) corrupt(name, "image data longer than the image");
-    } while ((state->avail_in > 0 || state->avail_out == 0) &&
-             state->block_state != ISAL_BLOCK_FINISH);
+  for (;;) {
+    const std::size_t n = inflater.inflate(scratch.get(), kScratch);
+    if (inflater.bad()) corrupt(name, "bad image data");
+    got += n;
+    if (got > want) corrupt(name, "image data longer than the image");
+    if (n < kScratch) break;  // the stream's end
   }
   if (got < want) corrupt(name, "bad or short image data");
-  if (state->block_state != ISAL_BLOCK_FINISH) corrupt(name, "image data ends early");
 }
 
 }  // namespace aosuite

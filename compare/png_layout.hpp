@@ -1,4 +1,4 @@
-// The one PNG validity rule both decoders follow (the fast ISA-L decoder, png_fast.hpp, and
+// The one PNG validity rule both decoders follow (the fast decoder, png_fast.hpp, and
 // libspng for every other kind, image_io.cpp): a file is accepted by one exactly when it is
 // by the other, and truncated is an error for every pixel format.
 //
@@ -59,10 +59,6 @@ PngHeader peek_png_header(std::span<const unsigned char> png, const std::string&
 // CRCs are left to the caller.
 PngLayout walk_png(std::span<const unsigned char> png, const std::string& name,
                    bool check_idat_crcs = true);
-
-// Checks the zlib header that starts the IDAT data (ISA-L does not check the window size).
-void check_zlib_header(const std::vector<std::span<const unsigned char>>& idat,
-                       const std::string& name);
 
 // Inflates the whole IDAT stream without keeping it, and checks that it has exactly
 // layout.filtered_bytes() bytes and ends with a good checksum (the decoder that fills the
