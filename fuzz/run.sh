@@ -35,7 +35,7 @@ echo "fuzz: built ${#targets[@]} targets in $((SECONDS - start)) s"
 
 dictionary() {
   case $1 in
-    png_*) echo png ;;
+    png_* | inflate_*) echo png ;;
     mesh_*) echo mesh ;;
     scene_* | suite_*) echo toml ;;
     exr_*) echo exr ;;
