@@ -17,6 +17,7 @@
 
 #include "compare/band_compare.hpp"
 #include "compare/count_kernel.hpp"
+#include "compare/inflate.hpp"
 #include "compare/opencv.hpp"
 #include "compare/parallel_rows.hpp"
 #include "compare/png_fast.hpp"
@@ -164,13 +165,40 @@ void BM_TwoInflateFloor(benchmark::State& state) {
   two_inflate_floor(state, png_pair_for(static_cast<int>(state.range(0))));
 }
 
-// The floor under the floor: the first file's zlib stream inflated by ISA-L in one call on
-// one thread, no CRCs, no unfiltering. What a whole comparison of the pair cannot beat on two
-// cores without a faster inflate.
-void inflate_only(benchmark::State& state, const PngPair& files) {
-  const aosuite::PngLayout layout = aosuite::walk_png(files[0], "inflate", false);
-  std::vector<unsigned char> stream, out(std::size_t{layout.height} * (layout.width * 4 + 1));
+// The floor under the floor: the first file's zlib stream inflated in one call on one thread,
+// no CRCs, no unfiltering: by the project's inflater (InflateOnly) and by ISA-L's
+// (IsalInflateOnly), the one it replaced. What a whole comparison of the pair cannot beat on
+// two cores without a faster inflate.
+std::vector<unsigned char> zlib_stream(const std::vector<unsigned char>& png,
+                                       std::size_t& out_bytes) {
+  const aosuite::PngLayout layout = aosuite::walk_png(png, "inflate", false);
+  std::vector<unsigned char> stream;
   for (const auto& chunk : layout.idat) stream.insert(stream.end(), chunk.begin(), chunk.end());
+  out_bytes = layout.filtered_bytes();
+  return stream;
+}
+
+void inflate_only(benchmark::State& state, const PngPair& files) {
+  std::size_t n = 0;
+  const std::vector<unsigned char> stream = zlib_stream(files[0], n);
+  std::vector<unsigned char> out(n + 1);
+  for (auto _ : state) {
+    bool given = false;
+    aosuite::Inflater inflater([&] {
+      const auto piece = given ? std::span<const unsigned char>{} : std::span(stream);
+      given = true;
+      return piece;
+    });
+    if (inflater.inflate(out.data(), out.size()) != n || !inflater.ended()) {
+      throw std::runtime_error("inflate failed");
+    }
+    benchmark::DoNotOptimize(out.data());
+  }
+}
+
+void isal_inflate_only(benchmark::State& state, const PngPair& files) {
+  std::size_t n = 0;
+  std::vector<unsigned char> stream = zlib_stream(files[0], n), out(n);
   for (auto _ : state) {
     inflate_state s;
     isal_inflate_init(&s);
@@ -182,6 +210,12 @@ void inflate_only(benchmark::State& state, const PngPair& files) {
     if (isal_inflate_stateless(&s) != ISAL_DECOMP_OK) throw std::runtime_error("inflate failed");
     benchmark::DoNotOptimize(out.data());
   }
+}
+
+// The same two on the synthetic AO-like image at each size (no --pair needed).
+void BM_Inflate(benchmark::State& state, bool isal) {
+  const PngPair& files = png_pair_for(static_cast<int>(state.range(0)));
+  (isal ? isal_inflate_only : inflate_only)(state, files);
 }
 
 void compare_png_bands_on(benchmark::State& state, const PngPair& files) {
@@ -249,6 +283,8 @@ BENCHMARK(BM_DecodePng)->SIZES;
 BENCHMARK_CAPTURE(BM_ComparePngFiles, whole, false)->SIZES;
 BENCHMARK_CAPTURE(BM_ComparePngFiles, bands, true)->SIZES;
 BENCHMARK(BM_TwoInflateFloor)->SIZES;
+BENCHMARK_CAPTURE(BM_Inflate, ours, false)->SIZES;
+BENCHMARK_CAPTURE(BM_Inflate, isal, true)->SIZES;
 BENCHMARK(BM_EncodeDiffPng)->SIZES;
 BENCHMARK_CAPTURE(BM_Unfilter, best, aosuite::UnfilterKernels::kBest)->DenseRange(1, 5);
 BENCHMARK_CAPTURE(BM_Unfilter, sse41, aosuite::UnfilterKernels::kSse41)->DenseRange(1, 5);
@@ -277,9 +313,11 @@ void register_file_pairs(int& argc, char** argv) {
   for (std::size_t i = 0; i < pairs.size(); ++i) {
     const std::string first = names[i].substr(0, names[i].find(','));
     for (const auto& [what, f] : {std::pair{"InflateOnly/", &inflate_only},
+                                  std::pair{"IsalInflateOnly/", &isal_inflate_only},
                                   std::pair{"TwoInflateFloor/", &two_inflate_floor},
                                   std::pair{"ComparePngBands/", &compare_png_bands_on}}) {
-      const std::string name = what + (f == &inflate_only ? first : names[i]);
+      const bool one_file = f == &inflate_only || f == &isal_inflate_only;
+      const std::string name = what + (one_file ? first : names[i]);
       benchmark::RegisterBenchmark(name.c_str(), f, std::cref(pairs[i]))
           ->Unit(benchmark::kMillisecond)
           ->UseRealTime();
