@@ -377,7 +377,7 @@ bool Inflater::State::read_dynamic_tables() {
     code_lens[kOrder[i]] = static_cast<std::uint8_t>(bits & 7);
     consume(3);
   }
-  std::array<std::uint32_t, inflate_detail::kCodeLenEnough> code_table{};
+  std::array<std::uint32_t, inflate_detail::kCodeLenEnough> code_table;  // a complete code fills it
   if (!inflate_detail::build_table(code_lens.data(), 19, Alphabet::kCodeLengths,
                                    code_table.data())) {
     return false;

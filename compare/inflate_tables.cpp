@@ -40,10 +40,18 @@ std::uint32_t symbol_entry(Alphabet alphabet, unsigned sym, unsigned len) {
   return 0;
 }
 
-unsigned reverse_bits(unsigned code, unsigned len) {
-  unsigned r = 0;
-  for (unsigned i = 0; i < len; ++i, code >>= 1) r = r << 1 | (code & 1);
+// The low `len` bits of code (len <= 15), reversed: deflate's codes are read from their most
+// significant bit, the tables indexed least significant bit first.
+constexpr auto kReversedByte = [] {
+  std::array<std::uint8_t, 256> r{};
+  for (unsigned v = 0; v < 256; ++v) {
+    for (unsigned i = 0; i < 8; ++i)
+      r[v] = static_cast<std::uint8_t>(r[v] | (v >> i & 1) << (7 - i));
+  }
   return r;
+}();
+unsigned reverse_bits(unsigned code, unsigned len) {
+  return (unsigned{kReversedByte[code & 255]} << 8 | kReversedByte[code >> 8 & 255]) >> (16 - len);
 }
 
 }  // namespace
@@ -76,7 +84,7 @@ bool build_table(const std::uint8_t* lens, unsigned n, Alphabet alphabet, std::u
   // Symbols in canonical order: by length, then value.
   std::array<unsigned, 16> offset{};
   for (unsigned len = 1; len < 15; ++len) offset[len + 1] = offset[len] + count[len];
-  std::array<std::uint16_t, 288> sorted{};
+  std::array<std::uint16_t, 288> sorted;  // the first `total` are set
   unsigned total = 0;
   for (unsigned s = 0; s < n; ++s) {
     if (lens[s] != 0) sorted[offset[lens[s]]++] = static_cast<std::uint16_t>(s), ++total;
