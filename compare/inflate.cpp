@@ -227,7 +227,8 @@ __attribute__((target("avx2,bmi,bmi2"))) Step Inflater::State::fast() {
     p += (63 - nb) >> 3;
     nb |= 56;
   };
-  const auto is_run = [](std::uint64_t e) { return (e & 0x700) != 0; };
+  // A run entry: literals, a length, or both (inflate_tables.hpp).
+  const auto is_run = [](std::uint64_t e) { return (e & 0xf00) != 0; };
   const auto put_run = [&](std::uint64_t run) {
     const std::uint64_t bytes = run >> 16;
     const auto n = static_cast<unsigned>(run >> 8 & 7);
@@ -235,49 +236,60 @@ __attribute__((target("avx2,bmi,bmi2"))) Step Inflater::State::fast() {
     o += n;
     b >>= run & 63;  // one shrx: it masks the count itself
     nb -= static_cast<unsigned>(run & 0xff);
-    hist = hist >> (8 * n) | bytes << (64 - 8 * n);
+    hist = hist >> (8 * n) | bytes << (63 - 8 * n) << 1;  // n may be 0
   };
   if (nb < kLitBits) refill();
   Step result = Step::kMore;
   while (p <= p_last && o <= o_last) {
+    unsigned len = 0;
     std::uint64_t e = run_table[b & kLitMask];  // nb >= kLitBits here
     refill();
     if (is_run(e)) {  // up to four runs before the next refill (4 * kLitBits bits)
       put_run(e);
+      if (e & inflate_detail::kRunLength) goto run_length;
       e = run_table[b & kLitMask];
       if (!is_run(e)) goto other;
       put_run(e);
+      if (e & inflate_detail::kRunLength) goto run_length;
       e = run_table[b & kLitMask];
       if (!is_run(e)) goto other;
       put_run(e);
+      if (e & inflate_detail::kRunLength) goto run_length;
       e = run_table[b & kLitMask];
       if (!is_run(e)) goto other;
       put_run(e);
-      continue;
+      if (!(e & inflate_detail::kRunLength)) continue;
+    run_length:
+      len = static_cast<unsigned>(e >> 56) + 3;
+      refill();  // 28 bits for a distance with its extra bits
+      goto distance;
     other:
       refill();  // 48 bits for a length and a distance, with their extra bits
     }
-    std::uint32_t s = static_cast<std::uint32_t>(e >> 16);
-    if (Entry::kind(s) == Kind::kSub) {
-      s = lit_codes[Entry::base(s) + _bzhi_u64(b >> kLitBits, Entry::small(s))];
+    {
+      std::uint32_t s = static_cast<std::uint32_t>(e >> 16);
+      if (Entry::kind(s) == Kind::kSub) {
+        s = lit_codes[Entry::base(s) + _bzhi_u64(b >> kLitBits, Entry::small(s))];
+      }
+      const unsigned l = Entry::length(s);
+      if (Entry::kind(s) == Kind::kLiteral) {  // a code longer than kLitBits
+        *o++ = static_cast<unsigned char>(Entry::small(s));
+        b >>= l, nb -= l;
+        hist = hist >> 8 | std::uint64_t{Entry::small(s)} << 56;
+        refill();
+        continue;
+      }
+      if (Entry::kind(s) != Kind::kBase) {
+        if (Entry::kind(s) == Kind::kEnd)
+          b >>= l, nb -= l, result = Step::kBlockEnd;
+        else
+          result = Step::kBad;
+        break;
+      }
+      len = static_cast<unsigned>(Entry::base(s) + _bzhi_u64(b >> l, Entry::small(s)));
+      b >>= l + Entry::small(s), nb -= l + Entry::small(s);
     }
-    const unsigned l = Entry::length(s);
-    if (Entry::kind(s) == Kind::kLiteral) {  // a code longer than kLitBits
-      *o++ = static_cast<unsigned char>(Entry::small(s));
-      b >>= l, nb -= l;
-      hist = hist >> 8 | std::uint64_t{Entry::small(s)} << 56;
-      refill();
-      continue;
-    }
-    if (Entry::kind(s) != Kind::kBase) {
-      if (Entry::kind(s) == Kind::kEnd)
-        b >>= l, nb -= l, result = Step::kBlockEnd;
-      else
-        result = Step::kBad;
-      break;
-    }
-    const auto len = static_cast<unsigned>(Entry::base(s) + _bzhi_u64(b >> l, Entry::small(s)));
-    b >>= l + Entry::small(s), nb -= l + Entry::small(s);
+  distance:
     std::uint32_t d = dist_codes[b & kDistMask];
     if (Entry::kind(d) == Kind::kSub) {
       d = dist_codes[Entry::base(d) + _bzhi_u64(b >> kDistBits, Entry::small(d))];

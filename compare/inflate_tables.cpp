@@ -132,19 +132,32 @@ bool build_table(const std::uint8_t* lens, unsigned n, Alphabet alphabet, std::u
 
 namespace {
 
-// One entry of tier r: its first literal (length l), then the run from the r - l bits after
-// it; a full run gives up its last literal for this one.
+// One entry of tier r: a length code whose extra bits fit, as the whole length; or a literal
+// (length l) followed by the run from the r - l bits after it, which gives up its length, or
+// when full its last literal, to make room.
 std::uint64_t run_entry(const std::uint32_t* litlen, const std::uint8_t* lens,
                         const std::uint64_t* scratch, unsigned r, std::size_t j) {
   const std::uint32_t e = litlen[j];  // only the low r bits of j decide a code that fits
   const unsigned l = Entry::length(e);
+  if (Entry::kind(e) == Kind::kBase && l > 0) {
+    const unsigned used = l + Entry::small(e);
+    if (used > r) return 0;
+    const auto len =
+        static_cast<unsigned>(Entry::base(e) + ((j >> l) & ((1u << Entry::small(e)) - 1)));
+    return std::uint64_t{len - 3} << 56 | used << 12 | kRunLength | used;
+  }
   if (Entry::kind(e) != Kind::kLiteral || l > r) return 0;
   std::uint64_t rest = scratch[(std::size_t{1} << (r - l)) - 1 + (j >> l)];
-  if ((rest >> 8 & 7) == kMaxRun) {
+  const unsigned count = rest >> 8 & 7;
+  if ((rest & kRunLength) && count == kMaxRun - 1) {
+    rest = (rest & ((std::uint64_t{1} << 56) - 1) & ~std::uint64_t{0xf800}) - (rest >> 12 & 15);
+  } else if (count == kMaxRun) {
     rest = (rest & ((std::uint64_t{1} << 56) - 1)) - lens[rest >> 56] - (1u << 8);
   }
-  return (rest >> 16) << 24 | std::uint64_t{Entry::small(e)} << 16 |
-         ((rest & 0x7ff) + (1u << 8) + l);
+  const bool with_length = rest & kRunLength;
+  const std::uint64_t bytes = (rest >> 16) & ((std::uint64_t{1} << (with_length ? 40 : 48)) - 1);
+  return (bytes << 8 | Entry::small(e)) << 16 |
+         (with_length ? rest & (std::uint64_t{255} << 56) : 0) | ((rest & 0xffff) + (1u << 8) + l);
 }
 
 // run_entry for four entries at once (r >= 2): about four times faster, and a run table is
@@ -174,7 +187,13 @@ __attribute__((target("avx2"))) void run_tier_avx2(const std::uint32_t* litlen,
     const __m256i full =
         _mm256_cmpeq_epi64(_mm256_and_si256(_mm256_srli_epi64(rest, 8), _mm256_set1_epi64x(7)),
                            _mm256_set1_epi64x(kMaxRun));
-    const int fix = _mm256_movemask_pd(_mm256_castsi256_pd(_mm256_and_si256(full, fits)));
+    // So must a run that ends in a length, and a length code makes one: both one at a time.
+    const __m256i length_rest = _mm256_cmpeq_epi64(
+        _mm256_and_si256(rest, _mm256_set1_epi64x(kRunLength)), _mm256_set1_epi64x(kRunLength));
+    const __m256i length_code =
+        _mm256_cmpeq_epi64(_mm256_and_si256(_mm256_srli_epi64(e, 4), low4), _mm256_set1_epi64x(1));
+    const int fix = _mm256_movemask_pd(_mm256_castsi256_pd(
+        _mm256_or_si256(_mm256_and_si256(_mm256_or_si256(full, length_rest), fits), length_code)));
     const __m256i run = _mm256_or_si256(
         _mm256_or_si256(_mm256_slli_epi64(_mm256_srli_epi64(rest, 16), 24),
                         _mm256_slli_epi64(_mm256_and_si256(_mm256_srli_epi64(e, 8), low8), 16)),
@@ -186,6 +205,7 @@ __attribute__((target("avx2"))) void run_tier_avx2(const std::uint32_t* litlen,
     for (unsigned f = static_cast<unsigned>(fix); f != 0; f &= f - 1) {
       const std::size_t k = j0 + static_cast<unsigned>(__builtin_ctz(f));
       tier[k] = run_entry(litlen, lens, scratch, r, k);
+      if (tier[k] == 0 && r == kLitBits) tier[k] = std::uint64_t{litlen[k]} << 16;
     }
     j = _mm256_add_epi64(j, _mm256_set1_epi64x(4));
   }
@@ -196,8 +216,9 @@ __attribute__((target("avx2"))) void run_tier_avx2(const std::uint32_t* litlen,
 // Tier r (the 2^r entries at scratch[2^r - 1]) holds the literal run read from exactly r
 // bits, built from the smaller tiers (run_entry).
 const std::uint64_t* build_run_table(const std::uint32_t* litlen, const std::uint8_t* lens,
-                                     std::uint64_t* scratch) {
-  static const bool avx2 = __builtin_cpu_supports("avx2");
+                                     std::uint64_t* scratch, bool vector) {
+  static const bool has_avx2 = __builtin_cpu_supports("avx2");
+  const bool avx2 = vector && has_avx2;
   scratch[0] = 0;
   for (unsigned r = 1; r <= kLitBits; ++r) {
     if (avx2 && r >= 2) {

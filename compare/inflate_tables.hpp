@@ -46,13 +46,17 @@ enum class Alphabet { kCodeLengths, kLitLen, kDist };
 bool build_table(const std::uint8_t* lens, unsigned n, Alphabet alphabet, std::uint32_t* table);
 
 // The fast loop's literal-run table: for each value of the next kLitBits bits, the literals a
-// greedy decoder reads from them in a row (up to kMaxRun), packed as `bits used | count << 8
-// | bytes << 16` (the bits used alone in the low byte, so that a shift by the entry is a
-// shift by them); where the first code is not a literal, the first-level entry in bits 16-47
-// and the rest 0. `scratch` is kRunScratch entries, the result its last 2^kLitBits.
+// greedy decoder reads from them in a row (up to kMaxRun), and the match length after them
+// where its code and extra bits fit too (kRunLength; then up to kMaxRun - 1 literals). Packed
+// as `bits used | count << 8 | kRunLength | length's bits << 12 | bytes << 16 | (length - 3)
+// << 56`, the bits used alone in the low byte, so that a shift by the entry is a shift by
+// them. Where neither a literal nor a length starts, the first-level entry in bits 16-47 and
+// the rest 0. `scratch` is kRunScratch entries, the result its last 2^kLitBits.
+constexpr std::uint64_t kRunLength = 1u << 11;
 constexpr unsigned kMaxRun = 6;
 constexpr std::size_t kRunScratch = (std::size_t{2} << kLitBits) - 1;
+// `vector` false builds it without AVX2 (what CPUs without it get), for tests.
 const std::uint64_t* build_run_table(const std::uint32_t* litlen, const std::uint8_t* lens,
-                                     std::uint64_t* scratch);
+                                     std::uint64_t* scratch, bool vector = true);
 
 }  // namespace aosuite::inflate_detail

@@ -15,6 +15,8 @@
 #include <string>
 #include <vector>
 
+#include "compare/inflate_tables.hpp"
+
 namespace {
 
 using aosuite::Inflater;
@@ -391,6 +393,86 @@ TEST(Inflate, RefusesWhatZlibRefusesAndNothingElse) {
   }
   EXPECT_GE(zlib_accepts, 6);
   EXPECT_LE(zlib_accepts, static_cast<int>(cases.size()) - 12);
+}
+
+// Random complete literal/length codes (a code split in two at a random leaf until there
+// are enough, end-of-block always among them): the run table built with AVX2 and without is
+// the same, and every entry says what reading the plain table code by code says.
+TEST(InflateTables, RunTableHoldsWhatTheCodesSay) {
+  namespace id = aosuite::inflate_detail;
+  std::mt19937 rng(11);
+  for (int c = 0; c < 300; ++c) {
+    // Half the codes skewed as PNG data makes them: a literal of 1 bit, a length of 2 or 3.
+    const bool skewed = c % 2 == 0;
+    std::vector<unsigned> leaves = {1, 1};
+    const std::size_t want = 3 + rng() % 280;
+    while (leaves.size() < want) {
+      const std::size_t k = skewed && leaves.size() < 4 ? leaves.size() - 1 : rng() % leaves.size();
+      if (leaves[k] == 15) continue;
+      ++leaves[k];
+      leaves.push_back(leaves[k]);
+    }
+    std::sort(leaves.begin(), leaves.end());
+    std::vector<unsigned> symbols(286);
+    for (unsigned i = 0; i < 286; ++i) symbols[i] = i;
+    std::shuffle(symbols.begin(), symbols.end(), rng);
+    if (skewed) {  // shortest: a literal, then a length, then end-of-block
+      std::swap(*std::find_if(symbols.begin(), symbols.end(), [](unsigned v) { return v < 256; }),
+                symbols[0]);
+      std::swap(
+          *std::find_if(symbols.begin() + 1, symbols.end(), [](unsigned v) { return v > 256; }),
+          symbols[1]);
+    }
+    std::swap(*std::find(symbols.begin(), symbols.end(), 256u), symbols[skewed ? 2 : 0]);
+    std::array<std::uint8_t, 288 + 32> lens{};
+    for (std::size_t k = 0; k < leaves.size(); ++k)
+      lens[symbols[k]] = static_cast<std::uint8_t>(leaves[k]);
+    std::vector<std::uint32_t> table(id::kLitEnough);
+    ASSERT_TRUE(id::build_table(lens.data(), 286, id::Alphabet::kLitLen, table.data()));
+    std::vector<std::uint64_t> scratch_a(id::kRunScratch), scratch_b(id::kRunScratch);
+    const std::uint64_t* a = id::build_run_table(table.data(), lens.data(), scratch_a.data(), true);
+    const std::uint64_t* b =
+        id::build_run_table(table.data(), lens.data(), scratch_b.data(), false);
+    for (unsigned j = 0; j < 1u << id::kLitBits; ++j) {
+      ASSERT_EQ(a[j], b[j]) << "case " << c << " index " << j;
+      // Decode j code by code with the plain table: the run's literals, then its length.
+      unsigned at = 0, count = 0;
+      std::uint64_t bytes = 0;
+      bool length = false;
+      unsigned length_value = 0;
+      for (;;) {
+        const std::uint32_t e = table[(j >> at) & ((1u << id::kLitBits) - 1)];
+        const unsigned l = id::Entry::length(e);
+        if (id::Entry::kind(e) == id::Kind::kLiteral && at + l <= id::kLitBits &&
+            count < id::kMaxRun) {
+          bytes |= std::uint64_t{id::Entry::small(e)} << (8 * count++);
+          at += l;
+          continue;
+        }
+        const unsigned extra = id::Entry::small(e);
+        // A length joins up to kMaxRun - 1 literals (the sixth literal's byte holds it).
+        if (id::Entry::kind(e) == id::Kind::kBase && l > 0 && at + l + extra <= id::kLitBits &&
+            count < id::kMaxRun) {
+          length = true;
+          length_value = id::Entry::base(e) + ((j >> (at + l)) & ((1u << extra) - 1));
+          at += l + extra;
+        }
+        break;
+      }
+      const std::uint64_t run = a[j];
+      if (count == 0 && !length) {
+        EXPECT_EQ(run, std::uint64_t{table[j]} << 16) << "case " << c << " index " << j;
+        continue;
+      }
+      EXPECT_EQ(run & 63, at) << "case " << c << " index " << j;
+      EXPECT_EQ(run >> 8 & 7, count) << "case " << c << " index " << j;
+      EXPECT_EQ((run & id::kRunLength) != 0, length) << "case " << c << " index " << j;
+      EXPECT_EQ(run >> 16 & ((std::uint64_t{1} << (8 * count)) - 1), bytes) << "case " << c;
+      if (length) {
+        EXPECT_EQ((run >> 56) + 3, length_value) << "case " << c << " index " << j;
+      }
+    }
+  }
 }
 
 }  // namespace
