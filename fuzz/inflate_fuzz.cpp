@@ -10,6 +10,7 @@
 
 #include "compare/inflate.hpp"
 #include "fuzz/fuzz_util.hpp"
+#include "tests/inflate_harness.hpp"
 
 namespace {
 
@@ -20,7 +21,7 @@ constexpr std::size_t kLimit = 1 << 18;  // output compared (a stream may inflat
 
 struct Verdict {
   std::vector<unsigned char> out;
-  bool accepted = false, ended = false, bad = false;
+  bool accepted = false;
 };
 
 Verdict zlib_inflate(std::span<const unsigned char> stream) {
@@ -39,30 +40,6 @@ Verdict zlib_inflate(std::span<const unsigned char> stream) {
   return v;
 }
 
-Verdict ours(std::span<const unsigned char> stream, Inflater::Path path, std::size_t piece,
-             std::size_t band) {
-  std::size_t at = 0;
-  Inflater inflater(
-      [&]() {
-        const std::size_t n = std::min(piece, stream.size() - at);
-        at += n;
-        return stream.subspan(at - n, n);
-      },
-      path);
-  Verdict v;
-  v.out.resize(kLimit);
-  std::size_t got = 0;
-  while (got < kLimit) {
-    const std::size_t want = std::min(band, kLimit - got);
-    const std::size_t n = inflater.inflate(v.out.data() + got, want);
-    got += n;
-    if (n < want) break;
-  }
-  v.out.resize(got);
-  v.ended = inflater.ended(), v.bad = inflater.bad();
-  return v;
-}
-
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -74,7 +51,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const Verdict expected = zlib_inflate(stream);
   const bool whole = expected.out.size() < kLimit;  // else only the first kLimit bytes compare
   for (const Inflater::Path path : {Inflater::Path::kFast, Inflater::Path::kCareful}) {
-    const Verdict got = ours(stream, path, piece, band);
+    const aosuite::testing::Inflated got =
+        aosuite::testing::inflate_in_pieces(stream, path, piece, band, kLimit);
     if (got.ended && got.bad) fuzz::fail("both ended and bad");
     if (!whole) {
       if (!std::equal(got.out.begin(), got.out.end(), expected.out.begin()))

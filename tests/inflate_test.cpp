@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "compare/inflate_tables.hpp"
+#include "tests/inflate_harness.hpp"
 
 namespace {
 
@@ -104,36 +105,11 @@ Verdict zlib_inflate(const Bytes& stream) {
   return v;
 }
 
-struct Result {
-  Bytes out;
-  bool ended = false, bad = false;
-};
+using Result = aosuite::testing::Inflated;
 
-// Our inflater on `stream` handed over in pieces of up to `piece` bytes, asked for bands of
-// up to `band` bytes until it ends or refuses, with at most `limit` bytes in all.
 Result ours(const Bytes& stream, Inflater::Path path, std::size_t piece, std::size_t band,
             std::size_t limit) {
-  std::size_t at = 0;
-  Inflater inflater(
-      [&]() {
-        const std::size_t n = std::min(piece, stream.size() - at);
-        const std::span<const unsigned char> s(stream.data() + at, n);
-        at += n;
-        return s;
-      },
-      path);
-  Result r;
-  r.out.resize(limit);
-  std::size_t got = 0;
-  while (got < limit) {
-    const std::size_t want = std::min(band, limit - got);
-    const std::size_t n = inflater.inflate(r.out.data() + got, want);
-    got += n;
-    if (n < want) break;
-  }
-  r.out.resize(got);
-  r.ended = inflater.ended(), r.bad = inflater.bad();
-  return r;
+  return aosuite::testing::inflate_in_pieces(stream, path, piece, band, limit);
 }
 
 constexpr std::array<Inflater::Path, 2> kPaths = {Inflater::Path::kFast, Inflater::Path::kCareful};
