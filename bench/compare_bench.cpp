@@ -232,7 +232,7 @@ void BM_FaultIn2MB(benchmark::State& state, bool huge) {
   constexpr std::size_t kBytes = std::size_t{2} << 20;
   for (auto _ : state) {
     if (huge) {
-      aosuite::PixelBuffer buffer(kBytes);  // pre-faulted, huge pages from 512 KB up
+      aosuite::PixelBuffer buffer(kBytes);  // pre-faulted, huge pages from 2 MB up
       benchmark::DoNotOptimize(buffer.data());
     } else {
       void* p = ::mmap(nullptr, kBytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);

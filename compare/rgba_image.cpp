@@ -28,12 +28,15 @@ bool huge_pages_available() {
 
 PixelBuffer::PixelBuffer(std::size_t bytes) {
   if (bytes == 0) return;
-  // Buffers from half a megabyte up are whole, aligned 2 MB pages: on these VMs a 4 KB page
-  // fault costs about 10 us and a 2 MB one about 0.2 ms (both measured), and one fault per
-  // 4 KB page was 4.7 ms of a 1080p decode. The rounding wastes under one huge page.
+  // Every buffer is populated in one call (below): on these VMs a 4 KB page faulted on first
+  // touch costs about 10 us, and one fault per page was 4.7 ms of a 1080p decode. Buffers of
+  // 2 MB and more are also whole, aligned 2 MB pages, as cheap as populating 4 KB pages when
+  // the guest's memory is backed by the host (0.2 ms for 2 MB) but 6 ms when it is not (two
+  // runs in four of `aosuite compare` at 1080p, strace -T); smaller ones, a band ring, stay
+  // in 4 KB pages: 0.4 ms for 1.3 MB, every run. The rounding wastes under one huge page.
   constexpr std::size_t kHuge = std::size_t{2} << 20;
   if (bytes > SIZE_MAX - 2 * kHuge) throw std::bad_alloc();
-  const bool huge = bytes >= kHuge / 4 && huge_pages_available();
+  const bool huge = bytes >= kHuge && huge_pages_available();
   const std::size_t mapped = huge ? (bytes + kHuge - 1) / kHuge * kHuge : bytes;
   const std::size_t slack = huge ? kHuge : 0;
   void* raw =
