@@ -15,8 +15,11 @@ namespace {
 // A band's pixels per image: large enough that the inflater's per-call cost (its 32 KB window
 // kept) is a few per cent, small enough that a band read is still in L2 when counted.
 constexpr std::size_t kBandBytes = 128 << 10;
-// Bands in flight per image: a decoder may run this many bands ahead of the counting.
-constexpr std::uint32_t kSlots = 4;
+// Bands in flight per image: a decoder may run this many bands ahead of the counting, and of
+// the other file's decoder, so that bands one file decodes slower than the other even out.
+// With 4 the 4K `blobs` peers-bench pair took 65.5 ms against its 54.0 ms two-inflate floor,
+// with 6 54.4 ms (compare_bench ComparePngBands); a 1080p ring stays under 2 MB (rgba_image.cpp).
+constexpr std::uint32_t kSlots = 6;
 
 // Two decoders meet here. Band i goes into slot i % kSlots of both images; once both have
 // it, it is counted by whichever decoder next finds its own next slot still taken (or its
