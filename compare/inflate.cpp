@@ -82,12 +82,12 @@ struct Inflater::State {
   std::size_t window_fill = 0;
   std::uint32_t adler = 1;
 
-  const std::uint32_t* litlen = nullptr;  // the block's tables: dynamic_ or fixed_
-  const std::uint32_t* dist = nullptr;
-  const std::uint64_t* runs = nullptr;
+  // The block's codes: first-level tables and their second levels, and the literal runs
+  // (`runs` points into run_scratch).
   std::array<std::uint32_t, inflate_detail::kLitEnough> lit_table{};
   std::array<std::uint32_t, inflate_detail::kDistEnough> dist_table{};
   std::array<std::uint64_t, inflate_detail::kRunScratch> run_scratch{};
+  const std::uint64_t* runs = nullptr;
   std::array<std::uint8_t, 288 + 32> lens{};
 
   std::size_t available() const { return window_fill + static_cast<std::size_t>(out - out_begin); }
@@ -150,9 +150,9 @@ void Inflater::State::copy_careful(unsigned len, unsigned d) {
 // Reads one code (a match with its distance) and writes what it stands for, exactly.
 Step Inflater::State::careful_symbol() {
   refill();
-  std::uint32_t e = litlen[bits & ((1u << kLitBits) - 1)];
+  std::uint32_t e = lit_table[bits & ((1u << kLitBits) - 1)];
   if (Entry::kind(e) == Kind::kSub) {
-    e = litlen[Entry::base(e) + low_bits(bits >> kLitBits, Entry::small(e))];
+    e = lit_table[Entry::base(e) + low_bits(bits >> kLitBits, Entry::small(e))];
   }
   unsigned used = Entry::length(e);
   if (used > nbits || Entry::kind(e) == Kind::kInvalid) return Step::kBad;
@@ -169,9 +169,9 @@ Step Inflater::State::careful_symbol() {
   const unsigned len =
       Entry::base(e) + static_cast<unsigned>(low_bits(bits >> used, Entry::small(e)));
   used += Entry::small(e);
-  std::uint32_t d = dist[(bits >> used) & ((1u << kDistBits) - 1)];
+  std::uint32_t d = dist_table[(bits >> used) & ((1u << kDistBits) - 1)];
   if (Entry::kind(d) == Kind::kSub) {
-    d = dist[Entry::base(d) + low_bits(bits >> (used + kDistBits), Entry::small(d))];
+    d = dist_table[Entry::base(d) + low_bits(bits >> (used + kDistBits), Entry::small(d))];
   }
   if (Entry::kind(d) != Kind::kBase) return Step::kBad;
   const unsigned dist_at = used + Entry::length(d);
@@ -209,7 +209,7 @@ Step Inflater::State::huffman() {
 // shift itself. kMore where a buffer end came near.
 __attribute__((target("avx2,bmi,bmi2"))) Step Inflater::State::fast() {
   const std::uint64_t* const run_table = runs;
-  const std::uint32_t *const lit_codes = litlen, *const dist_codes = dist;
+  const std::uint32_t *const lit_codes = lit_table.data(), *const dist_codes = dist_table.data();
   std::uint64_t b = bits;
   unsigned nb = nbits;
   const unsigned char* p = in;
@@ -367,8 +367,7 @@ void Inflater::State::use_fixed_tables() {
   std::fill_n(lens.begin() + 288, 32, 5);
   inflate_detail::build_table(lens.data(), 288, Alphabet::kLitLen, lit_table.data());
   inflate_detail::build_table(lens.data() + 288, 32, Alphabet::kDist, dist_table.data());
-  litlen = lit_table.data(), dist = dist_table.data();
-  runs = inflate_detail::build_run_table(litlen, lens.data(), run_scratch.data());
+  runs = inflate_detail::build_run_table(lit_table.data(), lens.data(), run_scratch.data());
 }
 
 // zlib's checks, in its order: counts, the code-length code (complete), the lengths (a repeat
@@ -423,8 +422,7 @@ bool Inflater::State::read_dynamic_tables() {
       !inflate_detail::build_table(lens.data() + 288, ndist, Alphabet::kDist, dist_table.data())) {
     return false;
   }
-  litlen = lit_table.data(), dist = dist_table.data();
-  runs = inflate_detail::build_run_table(litlen, lens.data(), run_scratch.data());
+  runs = inflate_detail::build_run_table(lit_table.data(), lens.data(), run_scratch.data());
   return true;
 }
 
