@@ -75,8 +75,7 @@ struct PngRows::Feed {
 };
 
 PngRows::PngRows(std::string name)
-    : name_(name),
-      feed_(std::make_unique<Feed>(Feed{std::move(name), {}, 0, 0, 0})),
+    : feed_(std::make_unique<Feed>(Feed{std::move(name), {}, 0, 0, 0})),
       inflater_([feed = feed_.get()] { return feed->next(); }) {}
 PngRows::PngRows(PngRows&&) noexcept = default;
 PngRows& PngRows::operator=(PngRows&&) noexcept = default;
@@ -109,7 +108,7 @@ std::optional<PngRows> PngRows::open(std::span<const unsigned char> png, const s
 // checked before inflating.
 void PngRows::fail(const char* why) {
   feed_->take_rest();
-  throw corrupt(name_, why);
+  throw corrupt(feed_->name, why);
 }
 
 // Inflates into out[0, n) until it is full or the stream ends; how many bytes it wrote.
@@ -124,7 +123,6 @@ void PngRows::inflate_rows(unsigned char* raw, std::uint32_t rows) {
   if (rows == 0 || rows > height_ - row_) {
     throw std::logic_error("PngRows: reads must be 1.. rows left");
   }
-  // At most 1 GiB + h bytes in all by kMaxImagePixels, so 32 bits suffice.
   const std::size_t want = (row_len() + 1) * rows;
   if (inflate(raw, want, "bad or short image data") != want) fail("bad or short image data");
   for (std::uint32_t y = 0; y < rows; ++y) {

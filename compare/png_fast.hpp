@@ -63,12 +63,11 @@ class PngRows {
   [[noreturn]] void fail(const char* why);
   void finish();
 
-  std::string name_;
   std::uint32_t width_ = 0, height_ = 0, row_ = 0;  // row_: rows read so far
   int bpp_ = 0;
   std::vector<unsigned char> prev_;  // the last row unfiltered (zeros before row 0)
-  // The IDAT chunks, handed to the inflater a slice at a time (on the heap: the inflater
-  // holds on to it, and a PngRows moves).
+  // The file's name and IDAT chunks, handed to the inflater a slice at a time (on the heap:
+  // the inflater holds on to it, and a PngRows moves).
   std::unique_ptr<Feed> feed_;
   Inflater inflater_;
 };
