@@ -19,6 +19,8 @@
 #include <thread>
 #include <vector>
 
+#include "compare/exr_header_walk.hpp"
+
 namespace {
 
 void set_error(char* err, std::size_t err_len, const std::string& what) {
@@ -64,42 +66,6 @@ std::string channel_names(const Imf::ChannelList& list) {
   return out.empty() ? "none" : out;
 }
 
-// OpenEXR allocates each header attribute's declared size before reading its value (a 35-byte
-// file of an unknown attribute type claimed 1.7 GB: exr_fuzz). So every attribute's size is
-// held to the bytes left in the file first, in every part's header. The layout: magic and
-// version (8 bytes), then per header (name\0 type\0 size value)... \0, and one more \0 after
-// the last header of a multi-part file (version flag 0x1000).
-void check_attribute_sizes(const unsigned char* bytes, std::size_t size) {
-  if (size < 8) return;  // OpenEXR refuses it itself
-  const bool multipart = (bytes[5] & 0x10) != 0;
-  std::size_t pos = 8;
-  const auto skip_string = [&] {
-    const void* nul = std::memchr(bytes + pos, 0, size - pos);
-    if (!nul) throw std::runtime_error("header cut off");
-    const std::size_t length = std::size_t(static_cast<const unsigned char*>(nul) - (bytes + pos));
-    pos += length + 1;
-    return length;
-  };
-  while (pos < size) {
-    if (skip_string() == 0) {  // a header's end
-      if (!multipart || pos >= size || bytes[pos] == 0) return;
-      continue;
-    }
-    skip_string();  // the type
-    if (size - pos < 4) throw std::runtime_error("header cut off");
-    const std::uint32_t n = std::uint32_t(bytes[pos]) | std::uint32_t(bytes[pos + 1]) << 8 |
-                            std::uint32_t(bytes[pos + 2]) << 16 |
-                            std::uint32_t(bytes[pos + 3]) << 24;
-    pos += 4;
-    if (n > size - pos) {
-      throw std::runtime_error("an attribute claims " + std::to_string(n) +
-                               " bytes, more than the " + std::to_string(size - pos) +
-                               " left in the file");
-    }
-    pos += n;
-  }
-}
-
 }  // namespace
 
 // Writes a one-channel float image (channel Y) to `path`. 0 on success, else 1 with the reason
@@ -143,7 +109,7 @@ extern "C" __attribute__((visibility("default"))) int aosuite_read_exr(
       Imf::Header::setMaxTileSize(32768, 32768);
       return n;
     }();
-    check_attribute_sizes(bytes, size);
+    aosuite::exr::check_attribute_sizes(bytes, size);
     Imf::InputFile in(stream, threads);
     const Imath::Box2i window = in.header().dataWindow();
     const std::vector<std::string> names = channels_to_read(in.header().channels());
