@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <system_error>
 
+#include "common/printable.hpp"
 #include "common/sibling_library.hpp"
 #include "compare/image_io.hpp"
 
@@ -33,13 +34,12 @@ Fn* exr_entry(const char* symbol, const std::string& name, const char* doing) {
   return entry.fn;
 }
 
-// OpenImageIO's messages may span lines; ours are one.
+// OpenEXR's messages may span lines, and they and the header walk's quote names from the
+// file: one line, escaped.
 std::string one_line(std::string text) {
   std::replace(text.begin(), text.end(), '\n', ' ');
-  // The file OpenImageIO was told of is a stand-in for the bytes in memory.
-  for (std::size_t at; (at = text.find(" \"image.exr\"")) != std::string::npos;) text.erase(at, 12);
   while (!text.empty() && text.back() == ' ') text.pop_back();
-  return text;
+  return printable(text);
 }
 
 struct Allocation {

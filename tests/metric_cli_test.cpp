@@ -198,6 +198,15 @@ TEST(MetricCli, ExrAttributeSizesAreHeldToTheFile) {
                        "bytes, more than the 2 left in the file)"),
       std::string::npos)
       << refused.err;
+  // A name from the file reaches the message escaped.
+  std::string escape("\x76\x2f\x31\x01\x02\0\0\0cap\x1b[2JDate\0strifg\0", 27);
+  std::ofstream(dir.path() / "escape.exr") << escape + "linexx";
+  const Outcome escaped =
+      compare(dir, (dir.path() / "escape.exr").string() + " " + bad + " --metric rmse");
+  EXPECT_EQ(escaped.rc, 2);
+  EXPECT_NE(escaped.err.find("attribute 'cap\\x1b[2JDate' claims"), std::string::npos)
+      << escaped.err;
+  EXPECT_EQ(escaped.err.find('\x1b'), std::string::npos);
   // Two parts (OpenEXR wants one display window for all), two headers: the walk goes on
   // past the first header's end into the second.
   OIIO::ImageSpec specs[2] = {OIIO::ImageSpec(4, 4, 1, OIIO::TypeDesc::FLOAT),
