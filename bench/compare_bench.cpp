@@ -10,11 +10,10 @@
 
 #include <atomic>
 #include <cstring>
-#include <future>
 #include <opencv2/core/utility.hpp>
 #include <string_view>
-#include <thread>
 
+#include "common/thread_beside.hpp"
 #include "compare/band_compare.hpp"
 #include "compare/count_kernel.hpp"
 #include "compare/inflate.hpp"
@@ -131,10 +130,10 @@ void BM_ComparePngFiles(benchmark::State& state, bool bands) {
     if (bands) {
       benchmark::DoNotOptimize(aosuite::compare_png_bands(pa, "a", pb, "b", o));
     } else {
-      auto decoding_b =
-          std::async(std::launch::async, [&] { return aosuite::decode_png(pb, "b"); });
-      const aosuite::RgbaImage img_a = aosuite::decode_png(pa, "a");
-      benchmark::DoNotOptimize(aosuite::resemble::compare(img_a, decoding_b.get(), o));
+      aosuite::RgbaImage img_a, img_b;
+      aosuite::side_by_side([&] { img_b = aosuite::decode_png(pb, "b"); },
+                            [&] { img_a = aosuite::decode_png(pa, "a"); });
+      benchmark::DoNotOptimize(aosuite::resemble::compare(img_a, img_b, o));
     }
   }
   const auto& a = pair_for(static_cast<int>(state.range(0))).first;
@@ -156,7 +155,8 @@ void inflate_and_unfilter(const std::vector<unsigned char>& png, unsigned char* 
 void two_inflate_floor(benchmark::State& state, const PngPair& files) {
   const aosuite::PixelBuffer bands(std::size_t{2} << 20);
   for (auto _ : state) {
-    std::jthread other([&] { inflate_and_unfilter(files[1], bands.data() + (1 << 20)); });
+    const aosuite::ThreadBeside other(
+        [&] { inflate_and_unfilter(files[1], bands.data() + (1 << 20)); });
     inflate_and_unfilter(files[0], bands.data());
   }
 }

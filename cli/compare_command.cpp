@@ -10,7 +10,6 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
-#include <future>
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -20,6 +19,7 @@
 
 #include "cli/commands.hpp"
 #include "cli/compare_metrics.hpp"
+#include "common/thread_beside.hpp"
 #include "compare/band_compare.hpp"
 #include "compare/image_io.hpp"
 #include "compare/picture.hpp"
@@ -221,9 +221,7 @@ rs::Result compare_files(const std::string& a, const std::string& b, rs::Options
   if (identical) {
     img_a = img_b = decode_png(bytes_a, a);  // the diff image still needs the pixels, once
   } else {
-    auto decoding_b = std::async(std::launch::async, [&] { return decode_png(bytes_b, b); });
-    img_a = decode_png(bytes_a, a);
-    img_b = decoding_b.get();
+    side_by_side([&] { img_b = decode_png(bytes_b, b); }, [&] { img_a = decode_png(bytes_a, a); });
   }
   rs::Result r = rs::compare(img_a, img_b, o);
   if (!diff_path.empty()) {

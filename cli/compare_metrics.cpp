@@ -2,9 +2,9 @@
 
 #include <fmt/format.h>
 
-#include <future>
 #include <stdexcept>
 
+#include "common/thread_beside.hpp"
 #include "compare/image_io.hpp"
 
 namespace aosuite::cli {
@@ -32,8 +32,8 @@ MetricRun run_metrics(const MetricPlan& plan, const std::string& a, const std::s
   MetricRun run;
   if (plan.metrics.empty()) return run;
   // Both files at once: decoding is most of a metric's run for EXR and large PNGs.
-  auto reading_b = std::async(std::launch::async, [&] { return read_picture(b, max_bytes); });
-  const Picture pa = read_picture(a, max_bytes), pb = reading_b.get();
+  Picture pa, pb;
+  side_by_side([&] { pb = read_picture(b, max_bytes); }, [&] { pa = read_picture(a, max_bytes); });
   for (const metric::Gates& g : plan.metrics) {
     const bool map = heatmap && g.metric->name == "flip";
     metric::Measurement m = metric::measure(*g.metric, pa, pb, {.want_map = map});

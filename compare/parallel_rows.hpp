@@ -1,4 +1,4 @@
-// Splits an image's rows into one band per hardware thread. Plain std::thread rather than
+// Splits an image's rows into one band per hardware thread. Plain threads rather than
 // cv::parallel_for_: the comparator runs once per process, and starting OpenCV's TBB pool
 // cost more (~3 ms) than the 1080p comparison itself.
 #pragma once
@@ -8,6 +8,8 @@
 #include <cstdint>
 #include <thread>
 #include <vector>
+
+#include "common/thread_beside.hpp"
 
 namespace aosuite {
 
@@ -22,7 +24,7 @@ void parallel_rows(int width, int height, Band&& band) {
     band(0, height);
     return;
   }
-  std::vector<std::jthread> others;
+  std::vector<ThreadBeside> others;  // off this thread's CPU (common/thread_beside.hpp)
   others.reserve(std::size_t(n - 1));
   auto edge = [&](int i) { return static_cast<int>(std::int64_t{height} * i / n); };
   for (int i = 1; i < n; ++i) others.emplace_back([&, i] { band(edge(i), edge(i + 1)); });

@@ -1,0 +1,51 @@
+// Threads for work that runs beside the caller's, started on other CPUs. Linux starts a new
+// thread on its creator's CPU and leaves it to an idle CPU to pull it over when that CPU next
+// balances; even once apart, a thread woken by the other (from a lock or a page fault) was
+// put back on the waker's CPU. On the 2-vCPU machines measured here, the two decoders of a
+// 1080p comparison took turns on one CPU for 3-9 ms of their 15 in most processes
+// (bench/README.md, "the two decoders on one CPU").
+#pragma once
+
+#include <pthread.h>
+
+#include <exception>
+#include <functional>
+
+namespace aosuite {
+
+// Runs `work` on a new thread, joined on destruction (as std::jthread), which never runs on
+// the CPU its creator was on when it was made, whenever the process may use another one. The
+// creator stays free to go anywhere. `work` must not throw.
+class ThreadBeside {
+ public:
+  explicit ThreadBeside(std::function<void()> work);
+  ThreadBeside(ThreadBeside&& other) noexcept;
+  ThreadBeside& operator=(ThreadBeside&&) = delete;
+  ThreadBeside(const ThreadBeside&) = delete;
+  ThreadBeside& operator=(const ThreadBeside&) = delete;
+  ~ThreadBeside();
+
+ private:
+  pthread_t thread_{};
+  bool joinable_ = true;
+};
+
+// Runs `there` on a ThreadBeside and `here` on this thread; once both are done, rethrows
+// what `here` threw, else what `there` threw.
+template <class There, class Here>
+void side_by_side(There&& there, Here&& here) {
+  std::exception_ptr thrown;
+  {
+    const ThreadBeside other([&] {
+      try {
+        there();
+      } catch (...) {
+        thrown = std::current_exception();
+      }
+    });
+    here();
+  }
+  if (thrown) std::rethrow_exception(thrown);
+}
+
+}  // namespace aosuite
