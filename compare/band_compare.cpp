@@ -120,9 +120,8 @@ std::optional<resemble::Result> compare_png_bands(std::span<const unsigned char>
   const std::uint32_t band_rows = band_rows_for(w);
   const std::uint32_t bands = (h + band_rows - 1) / band_rows;
   // Each decoder populates its own ring on its own thread: the two populations (0.7 ms
-  // together at 1080p) run side by side, and the second thread is started before either, so
-  // they also overlap its start-up (about a millisecond on these VMs, whose idle second core
-  // sleeps). 1080p `blobs`, whole process: 21.5 -> 19.9 ms (bench/README.md).
+  // together at 1080p) run side by side, and overlap the second thread's start.
+  // 1080p `blobs`, whole process: 21.5 -> 19.9 ms (bench/README.md).
   const std::array<std::size_t, 2> slot_bytes = {png[0]->band_bytes(band_rows),
                                                  png[1]->band_bytes(band_rows)};
   std::array<PixelBuffer, 2> rings;
