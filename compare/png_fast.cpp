@@ -16,10 +16,6 @@
 namespace aosuite {
 namespace {
 
-std::uint32_t be32(const unsigned char* p) {
-  return std::uint32_t{p[0]} << 24 | std::uint32_t{p[1]} << 16 | std::uint32_t{p[2]} << 8 | p[3];
-}
-
 FileError corrupt(const std::string& name, const char* why) {
   return FileError(fmt::format("{}: {}: truncated or corrupt PNG", name, why));
 }

@@ -15,10 +15,6 @@ namespace {
 
 constexpr unsigned char kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
 
-std::uint32_t be32(const unsigned char* p) {
-  return std::uint32_t{p[0]} << 24 | std::uint32_t{p[1]} << 16 | std::uint32_t{p[2]} << 8 | p[3];
-}
-
 bool is(const unsigned char* type, const char* name) { return std::memcmp(type, name, 4) == 0; }
 
 [[noreturn]] void corrupt(const std::string& name, const std::string& why) {

@@ -27,6 +27,11 @@
 
 namespace aosuite {
 
+// A PNG's big-endian 32-bit field (chunk lengths, CRCs, IHDR's sizes).
+inline std::uint32_t be32(const unsigned char* p) {
+  return std::uint32_t{p[0]} << 24 | std::uint32_t{p[1]} << 16 | std::uint32_t{p[2]} << 8 | p[3];
+}
+
 struct PngLayout {
   std::uint32_t width = 0, height = 0;
   int bit_depth = 0, colour_type = 0, interlace = 0;
