@@ -14,14 +14,16 @@ void* run(void* work) {
   return nullptr;
 }
 
-// Every CPU the process may use but the caller's, in `attr`; none such (one CPU, or more
-// than a cpu_set_t holds) leaves the placement to the kernel.
-void elsewhere(pthread_attr_t& attr) {
+// Every CPU the caller may use but its own, in `attr`; false where there is none (one CPU,
+// or more than a cpu_set_t holds), which leaves the placement to the kernel.
+bool elsewhere(pthread_attr_t& attr) {
   const int here = sched_getcpu();
   cpu_set_t cpus;
-  if (here < 0 || here >= CPU_SETSIZE || sched_getaffinity(0, sizeof cpus, &cpus) != 0) return;
+  if (here < 0 || here >= CPU_SETSIZE || sched_getaffinity(0, sizeof cpus, &cpus) != 0) {
+    return false;
+  }
   CPU_CLR(here, &cpus);
-  if (CPU_COUNT(&cpus) > 0) pthread_attr_setaffinity_np(&attr, sizeof cpus, &cpus);
+  return CPU_COUNT(&cpus) > 0 && pthread_attr_setaffinity_np(&attr, sizeof cpus, &cpus) == 0;
 }
 
 }  // namespace
@@ -30,9 +32,10 @@ ThreadBeside::ThreadBeside(std::function<void()> work) {
   auto owned = std::make_unique<std::function<void()>>(std::move(work));
   pthread_attr_t attr;
   pthread_attr_init(&attr);
-  elsewhere(attr);
-  const int error = pthread_create(&thread_, &attr, run, owned.get());
+  int error = elsewhere(attr) ? pthread_create(&thread_, &attr, run, owned.get()) : -1;
   pthread_attr_destroy(&attr);
+  // A set the kernel refuses (a CPU gone offline meanwhile) is no reason to fail: anywhere.
+  if (error != 0) error = pthread_create(&thread_, nullptr, run, owned.get());
   if (error != 0) throw std::system_error(error, std::generic_category(), "starting a thread");
   owned.release();  // run() owns it now
 }
