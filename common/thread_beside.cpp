@@ -8,7 +8,7 @@
 namespace aosuite {
 namespace {
 
-void* run(void* work) {
+void* run(void* work) noexcept {
   const std::unique_ptr<std::function<void()>> owned(static_cast<std::function<void()>*>(work));
   (*owned)();
   return nullptr;
@@ -35,6 +35,7 @@ ThreadBeside::ThreadBeside(std::function<void()> work) {
   int error = elsewhere(attr) ? pthread_create(&thread_, &attr, run, owned.get()) : -1;
   pthread_attr_destroy(&attr);
   // A set the kernel refuses (a CPU gone offline meanwhile) is no reason to fail: anywhere.
+  // glibc's thread then ends without calling run(), so `owned` is still ours.
   if (error != 0) error = pthread_create(&thread_, nullptr, run, owned.get());
   if (error != 0) throw std::system_error(error, std::generic_category(), "starting a thread");
   owned.release();  // run() owns it now

@@ -13,9 +13,11 @@
 
 namespace aosuite {
 
-// Runs `work` on a new thread, joined on destruction (as std::jthread), which never runs on
-// the CPU its creator was on when it was made, whenever the process may use another one. The
-// creator stays free to go anywhere. `work` must not throw.
+// Runs `work` on a new thread, joined on destruction (as std::jthread), allowed every CPU the
+// creating thread may use but the one it was on, when there is another (else the creator's
+// CPUs). The exclusion is one way and for good: the creator stays free to go anywhere, and
+// threads the new one starts inherit its narrowed set (a pool meant for every CPU is started
+// under MainThreadCpus, cpu_set.hpp). `work` must not throw: that ends the process.
 class ThreadBeside {
  public:
   explicit ThreadBeside(std::function<void()> work);

@@ -16,9 +16,9 @@
 #include <cstring>
 #include <exception>
 #include <string>
-#include <thread>
 #include <vector>
 
+#include "common/cpu_set.hpp"
 #include "compare/exr_header_walk.hpp"
 
 namespace {
@@ -100,7 +100,9 @@ extern "C" __attribute__((visibility("default"))) int aosuite_read_exr(
     MemoryStream stream(bytes, size);
     // Line blocks decompress on every core: zip-compressed floats are most of a read.
     static const int threads = [] {
-      const int n = int(std::max(1u, std::thread::hardware_concurrency()));
+      // The pool's threads may run wherever the process may, whichever thread reads first.
+      const aosuite::MainThreadCpus everywhere;
+      const int n = aosuite::usable_cpus();
       Imf::setGlobalThreadCount(n);
       // OpenEXR sizes its tables from the header before any pixel is read: a 300-byte file
       // claiming a huge window would take gigabytes. No side over 32768 (aosuite refuses more

@@ -3,27 +3,39 @@
 #include <gtest/gtest.h>
 #include <pthread.h>
 #include <sched.h>
+#include <unistd.h>
 
 #include <atomic>
+#include <chrono>
 #include <stdexcept>
+#include <thread>
 #include <vector>
+
+#include "common/cpu_set.hpp"
 
 namespace aosuite {
 namespace {
 
 cpu_set_t my_cpus() {
   cpu_set_t cpus;
-  EXPECT_EQ(pthread_getaffinity_np(pthread_self(), sizeof cpus, &cpus), 0);
+  EXPECT_EQ(sched_getaffinity(0, sizeof cpus, &cpus), 0);
   return cpus;
+}
+
+cpu_set_t just(int cpu) {
+  cpu_set_t one;
+  CPU_ZERO(&one);
+  CPU_SET(cpu, &one);
+  return one;
 }
 
 // Sets this thread's CPUs for the test's length, then gives the old ones back.
 class PinnedTo {
  public:
   explicit PinnedTo(const cpu_set_t& cpus) : old_(my_cpus()) {
-    EXPECT_EQ(pthread_setaffinity_np(pthread_self(), sizeof cpus, &cpus), 0);
+    EXPECT_EQ(sched_setaffinity(0, sizeof cpus, &cpus), 0);
   }
-  ~PinnedTo() { pthread_setaffinity_np(pthread_self(), sizeof old_, &old_); }
+  ~PinnedTo() { sched_setaffinity(0, sizeof old_, &old_); }
   PinnedTo(const PinnedTo&) = delete;
   PinnedTo& operator=(const PinnedTo&) = delete;
 
@@ -31,11 +43,26 @@ class PinnedTo {
   cpu_set_t old_;
 };
 
+// Waits (at most 10 s) until `flag` is set.
+bool wait_for(const std::atomic<bool>& flag) {
+  const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+  while (!flag.load()) {
+    if (std::chrono::steady_clock::now() > give_up) return false;
+    std::this_thread::yield();
+  }
+  return true;
+}
+
 TEST(ThreadBeside, RunsTheWorkAndJoinsItOnDestruction) {
   std::atomic<int> done = 0;
   {
-    std::vector<ThreadBeside> threads;
-    for (int i = 0; i < 8; ++i) threads.emplace_back([&] { ++done; });  // moved as it grows
+    std::vector<ThreadBeside> threads;  // moved as it grows
+    for (int i = 0; i < 8; ++i) {
+      threads.emplace_back([&] {
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+        ++done;
+      });
+    }
   }
   EXPECT_EQ(done.load(), 8);
 }
@@ -43,26 +70,32 @@ TEST(ThreadBeside, RunsTheWorkAndJoinsItOnDestruction) {
 // The new thread may use every CPU its creator may, but the one the creator was on.
 TEST(ThreadBeside, NeverRunsOnItsCreatorsCpu) {
   const cpu_set_t creator = my_cpus();
-  if (CPU_COUNT(&creator) < 2) GTEST_SKIP() << "needs a process allowed two CPUs";
+  if (CPU_COUNT(&creator) < 2) GTEST_SKIP() << "needs a thread allowed two CPUs";
+  int still = 0;  // rounds where the creator was on one CPU throughout
   for (int round = 0; round < 50; ++round) {
     cpu_set_t seen;
     int ran_on = -1;
+    const int before = sched_getcpu();
     {
       const ThreadBeside t([&] { seen = my_cpus(), ran_on = sched_getcpu(); });
     }
+    const int after = sched_getcpu();
     ASSERT_EQ(CPU_COUNT(&seen), CPU_COUNT(&creator) - 1);
     cpu_set_t both;
     CPU_AND(&both, &seen, &creator);
     ASSERT_TRUE(CPU_EQUAL(&both, &seen)) << "a CPU its creator may not use";
     ASSERT_TRUE(CPU_ISSET(ran_on, &seen));
+    if (before == after) {
+      ++still;
+      ASSERT_FALSE(CPU_ISSET(before, &seen)) << "allowed its creator's CPU " << before;
+    }
   }
+  EXPECT_GE(still, 10) << "the creator kept moving: the CPU it was on went unchecked";
 }
 
-// A creator held to one CPU leaves its thread there too: there is nowhere else.
-TEST(ThreadBeside, OneCpuLeavesThePlacementToTheKernel) {
-  cpu_set_t one;
-  CPU_ZERO(&one);
-  CPU_SET(sched_getcpu(), &one);
+// A creator held to one CPU gives its thread that CPU: there is no other.
+TEST(ThreadBeside, ACreatorHeldToOneCpuSharesIt) {
+  const cpu_set_t one = just(sched_getcpu());
   const PinnedTo pinned(one);
   cpu_set_t seen;
   {
@@ -71,11 +104,25 @@ TEST(ThreadBeside, OneCpuLeavesThePlacementToTheKernel) {
   EXPECT_TRUE(CPU_EQUAL(&seen, &one));
 }
 
-TEST(SideBySide, RunsBothAndRethrowsHereFirst) {
-  int there = 0, here = 0;
-  side_by_side([&] { there = 1; }, [&] { here = 1; });
-  EXPECT_EQ(there + here, 2);
+TEST(SideBySide, RunsBothAtOnceOnTwoThreads) {
+  std::atomic<bool> there_started = false, here_started = false;
+  bool there_saw_here = false, here_saw_there = false;
+  pthread_t there_thread{};
+  side_by_side(
+      [&] {
+        there_thread = pthread_self();
+        there_started = true;
+        there_saw_here = wait_for(here_started);
+      },
+      [&] {
+        here_started = true;
+        here_saw_there = wait_for(there_started);
+      });
+  EXPECT_TRUE(there_saw_here && here_saw_there) << "one ran after the other";
+  EXPECT_FALSE(pthread_equal(there_thread, pthread_self()));
+}
 
+TEST(SideBySide, RethrowsHereFirst) {
   auto throws = [](const char* what) { return [what] { throw std::runtime_error(what); }; };
   auto message = [](auto&& a, auto&& b) {
     try {
@@ -88,6 +135,31 @@ TEST(SideBySide, RunsBothAndRethrowsHereFirst) {
   EXPECT_EQ(message(throws("there"), [] {}), "there");
   EXPECT_EQ(message([] {}, throws("here")), "here");
   EXPECT_EQ(message(throws("there"), throws("here")), "here");
+}
+
+TEST(CpuSet, UsableCpusCountsTheThreadsOwn) {
+  const cpu_set_t mine = my_cpus();
+  EXPECT_EQ(usable_cpus(), CPU_COUNT(&mine));
+  const PinnedTo pinned(just(sched_getcpu()));
+  EXPECT_EQ(usable_cpus(), 1);
+}
+
+// A thread held to one CPU (as a ThreadBeside thread is kept off one) may go wherever the
+// main thread may while a MainThreadCpus lives, and is held again after.
+TEST(CpuSet, MainThreadCpusWidensForItsLifeOnly) {
+  cpu_set_t main;
+  ASSERT_EQ(sched_getaffinity(getpid(), sizeof main, &main), 0);
+  std::thread([&] {
+    const cpu_set_t one = just(sched_getcpu());
+    ASSERT_EQ(sched_setaffinity(0, sizeof one, &one), 0);
+    {
+      const MainThreadCpus everywhere;
+      const cpu_set_t during = my_cpus();
+      EXPECT_TRUE(CPU_EQUAL(&during, &main));
+    }
+    const cpu_set_t after = my_cpus();
+    EXPECT_TRUE(CPU_EQUAL(&after, &one));
+  }).join();
 }
 
 }  // namespace
