@@ -12,16 +12,12 @@ import shlex
 import statistics
 import sys
 
-from interleaved import time_interleaved
+from interleaved import take_runs, time_interleaved
 
 
 def main() -> int:
     args = sys.argv[1:]
-    runs = 40
-    if "--runs" in args:
-        i = args.index("--runs")
-        runs = int(args[i + 1])
-        del args[i : i + 2]
+    runs = take_runs(args, 40)
     if len(args) < 1:
         print(__doc__, file=sys.stderr)
         return 2

@@ -30,13 +30,19 @@ def time_interleaved(commands, runs):
     return times
 
 
+def take_runs(args, default):
+    """The value of `--runs N` in `args` (removed from it), else `default`."""
+    if "--runs" not in args:
+        return default
+    i = args.index("--runs")
+    runs = int(args[i + 1])
+    del args[i : i + 2]
+    return runs
+
+
 def main() -> int:
     args = sys.argv[1:]
-    runs = 15
-    if "--runs" in args:
-        i = args.index("--runs")
-        runs = int(args[i + 1])
-        del args[i : i + 2]
+    runs = take_runs(args, 15)
     if not args or any("=" not in a for a in args):
         print(__doc__, file=sys.stderr)
         return 2
