@@ -16,12 +16,10 @@
 namespace aosuite::resemble {
 
 Mode parse_mode(std::string_view name) {
-  if (name == "default") return Mode::kDefault;
-  if (name == "nothing") return Mode::kNothing;
-  if (name == "less") return Mode::kLess;
-  if (name == "colors") return Mode::kColors;
-  if (name == "antialiasing") return Mode::kAntialiasing;
-  if (name == "alpha") return Mode::kAlpha;
+  for (Mode mode : {Mode::kDefault, Mode::kNothing, Mode::kLess, Mode::kColors, Mode::kAntialiasing,
+                    Mode::kAlpha}) {
+    if (mode_name(mode) == name) return mode;
+  }
   throw std::invalid_argument("unknown mode '" + printable(name) +
                               "' (expected nothing, less, colors, antialiasing or alpha)");
 }

@@ -48,6 +48,16 @@ TEST(Resemble, CustomToleranceNeedsAMode) {
   EXPECT_EQ(compare(a, b, o).mismatch_count, 0u);
 }
 
+// Every mode a suite or batch line may name reads back as itself; names are case-sensitive.
+TEST(Resemble, ModeNamesRoundTrip) {
+  for (const char* name : {"default", "nothing", "less", "colors", "antialiasing", "alpha"}) {
+    EXPECT_EQ(mode_name(parse_mode(name)), name);
+  }
+  EXPECT_NE(parse_mode("less"), parse_mode("alpha"));
+  EXPECT_THROW(parse_mode("Less"), std::invalid_argument);
+  EXPECT_THROW(parse_mode(""), std::invalid_argument);
+}
+
 // A batch line's mode is quoted escaped in the error (found by fuzz/compare_options_fuzz.cpp).
 TEST(Resemble, UnknownModeIsQuotedEscaped) {
   try {
