@@ -130,13 +130,14 @@ extern "C" __attribute__((visibility("default"))) int aosuite_read_exr(
     }
     float* pixels = allocate(user, int(w), int(h), n);
     if (!pixels) return 1;
-    // Slices are addressed from the data window's origin, which need not be (0, 0).
+    // Slices are addressed from the data window's origin, which need not be (0, 0). Slice::Make
+    // moves the base pointer there in integer arithmetic: `pixels - min * stride` as pointer
+    // arithmetic is undefined once it leaves the buffer, and wraps below address 0 for a window
+    // far from the origin (exr_fuzz, fuzz/corpus/exr/window_far_from_origin.exr).
     const std::size_t xs = sizeof(float) * std::size_t(n), ys = xs * std::size_t(w);
-    char* origin = reinterpret_cast<char*>(pixels) - window.min.x * (long long)xs -
-                   window.min.y * (long long)ys;
     Imf::FrameBuffer fb;
     for (int c = 0; c < n; ++c)
-      fb.insert(names[std::size_t(c)], Imf::Slice(Imf::FLOAT, origin + c * sizeof(float), xs, ys));
+      fb.insert(names[std::size_t(c)], Imf::Slice::Make(Imf::FLOAT, pixels + c, window, xs, ys));
     in.setFrameBuffer(fb);
     in.readPixels(window.min.y, window.max.y);
     return 0;

@@ -2,6 +2,10 @@
 // EXR files through the command (FLIP and SSIM against the reference tools' numbers), 16-bit
 // PNGs kept at 16 bits, gates and exit codes, and every bad input answered in one line with
 // nothing written.
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfOutputFile.h>
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
@@ -37,6 +41,24 @@ void write_exr(const fs::path& path, int w, int h, const std::vector<std::string
   auto out = OIIO::ImageOutput::create(path.string());
   ASSERT_TRUE(out && out->open(path.string(), spec) &&
               out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()) && out->close());
+}
+
+// An RGB float EXR whose data window starts at (x0, y0), written with OpenEXR itself (OpenImageIO
+// crashes writing windows this far out).
+void write_exr_at(const fs::path& path, int w, int h, int x0, int y0,
+                  const std::vector<float>& rgb) {
+  const Imath::Box2i window({x0, y0}, {x0 + w - 1, y0 + h - 1});
+  Imf::Header header(Imath::Box2i({0, 0}, {w - 1, h - 1}), window);
+  Imf::FrameBuffer fb;
+  for (int c = 0; c < 3; ++c) {
+    const char* name = c == 0 ? "R" : c == 1 ? "G" : "B";
+    header.channels().insert(name, Imf::Channel(Imf::FLOAT));
+    fb.insert(name, Imf::Slice::Make(Imf::FLOAT, rgb.data() + c, window, 3 * sizeof(float),
+                                     3 * sizeof(float) * std::size_t(w)));
+  }
+  Imf::OutputFile out(path.c_str(), header);
+  out.setFrameBuffer(fb);
+  out.writePixels(h);
 }
 
 void write_png16(const fs::path& path, int w, int h, const std::vector<std::uint16_t>& rgb) {
@@ -180,6 +202,30 @@ TEST(MetricCli, NonFiniteFloatsAreCountedAndFailUnlessAllowed) {
   EXPECT_TRUE(std::isfinite(j.at("ssim").at("mean").get<double>()));
   EXPECT_EQ(compare(dir, ab + " --gate rmse.max=1").rc, 1);
   EXPECT_EQ(compare(dir, ab + " --gate rmse.max=1 --gate rmse.allow_nonfinite=true").rc, 0);
+}
+
+// A data window far from (0, 0) reads as the same pixels at the origin would. The window is
+// wide and low enough that addressing it from the buffer by pointer arithmetic wrapped below
+// address 0 (exr_fuzz under UBSan); a wrong origin would read the wrong samples or none.
+TEST(MetricCli, ExrDataWindowsFarFromTheOriginReadTheirOwnPixels) {
+  test::TempDir dir;
+  const int w = 32768, h = 2;
+  std::vector<float> rgb(std::size_t(w) * h * 3);
+  for (std::size_t i = 0; i < rgb.size(); ++i) rgb[i] = float(i % 251) / 251.0f;
+  write_exr_at(dir / "origin.exr", w, h, 0, 0, rgb);
+  write_exr_at(dir / "far.exr", w, h, 1000000, 1000000000, rgb);
+  const auto rmse = [&](const std::string& a, const std::string& b) {
+    const Outcome r =
+        compare(dir, (dir / a).string() + " " + (dir / b).string() + " --metric rmse --json");
+    EXPECT_EQ(r.rc, 0) << r.err;
+    return nlohmann::json::parse(r.out).at("rmse");
+  };
+  EXPECT_EQ(rmse("origin.exr", "far.exr").at("max_abs").get<double>(), 0.0);
+  rgb[3 * (w + 5) + 1] += 0.5f;  // green of the second row's sixth pixel
+  write_exr_at(dir / "far_changed.exr", w, h, -1000000000, 1000000000, rgb);
+  const auto changed = rmse("far.exr", "far_changed.exr");
+  EXPECT_NEAR(changed.at("max_abs").get<double>(), 0.5, 1e-6);
+  EXPECT_NEAR(changed.at("value").get<double>(), std::sqrt(0.25 / double(rgb.size())), 1e-9);
 }
 
 // One line naming the file and the problem, exit 2, nothing written.
