@@ -18,8 +18,8 @@ namespace aosuite {
 template <class Band>
 void parallel_rows(int width, int height, Band&& band) {
   const std::size_t pixels = std::size_t(std::max(width, 0)) * std::size_t(std::max(height, 0));
-  const auto hw = static_cast<std::size_t>(usable_cpus());
-  const int n = static_cast<int>(std::min({pixels >> 17, hw, std::size_t(std::max(height, 0))}));
+  const auto cpus = static_cast<std::size_t>(usable_cpus());
+  const int n = static_cast<int>(std::min({pixels >> 17, cpus, std::size_t(std::max(height, 0))}));
   if (n <= 1) {
     band(0, height);
     return;
