@@ -90,8 +90,9 @@ extern "C" __attribute__((visibility("default"))) int aosuite_write_exr(
 
 // Reads an EXR held in memory as float R, G, B (or Y alone), interleaved, over its data window.
 // `allocate(user, width, height, channels)` returns room for width * height * channels
-// floats, or nullptr to refuse the size (err then says why, as the allocator wrote it).
-// 0 on success, else 1 with the reason in err.
+// floats, or nullptr to refuse the size (err then names the size; an allocator may keep a
+// better reason of its own, as compare/exr_file.cpp's does). 0 on success, else 1 with the
+// reason in err: a refusal is never silent, whatever the allocator.
 extern "C" __attribute__((visibility("default"))) int aosuite_read_exr(
     const unsigned char* bytes, std::size_t size,
     float* (*allocate)(void* user, int width, int height, int channels), void* user, char* err,
@@ -129,7 +130,12 @@ extern "C" __attribute__((visibility("default"))) int aosuite_read_exr(
       return 1;
     }
     float* pixels = allocate(user, int(w), int(h), n);
-    if (!pixels) return 1;
+    if (!pixels) {
+      set_error(err, err_len,
+                "EXR's " + std::to_string(w) + "x" + std::to_string(h) + " data window with " +
+                    std::to_string(n) + " channel(s) was refused (too large to read)");
+      return 1;
+    }
     // Slices are addressed from the data window's origin, which need not be (0, 0). Slice::Make
     // moves the base pointer there in integer arithmetic: `pixels - min * stride` as pointer
     // arithmetic is undefined once it leaves the buffer, and wraps below address 0 for a window
