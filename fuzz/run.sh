@@ -6,6 +6,8 @@
 # memory (2 GB), naming the input that did it.
 # Usage: fuzz/run.sh [SECONDS] [TARGET...]
 # AOSUITE_FUZZ_BUILD sets the build folder (default: build-fuzz/ in the repository).
+# AOSUITE_FUZZ_FRESH=1 drops what earlier runs kept and starts from the seeds alone, as CI's
+# fuzz_smoke does (a large kept corpus can hide what one mutation of a seed reaches).
 set -euo pipefail
 src=$(cd "$(dirname "$0")/.." && pwd)
 seconds=${1:-60}
@@ -51,6 +53,7 @@ export LSAN_OPTIONS=suppressions=$src/fuzz/lsan.supp:print_suppressions=0
 failed=()
 for t in "${targets[@]}"; do
   corpus=$build/corpus/$t artifacts=$build/artifacts/$t/ log=$build/logs/$t.log
+  if [ "${AOSUITE_FUZZ_FRESH:-0}" = 1 ]; then rm -rf "$corpus"; fi
   mkdir -p "$corpus" "$artifacts"
   cp -n "$src/fuzz/corpus/${t%_fuzz}/"* "$corpus/"
   if "$build/fuzz/$t" -max_total_time="$seconds" -rss_limit_mb=2048 -timeout=10 \
