@@ -7,14 +7,15 @@
 
 #include "common/printable.hpp"
 #include "common/sibling_library.hpp"
+#include "compare/exr_library.hpp"
 #include "compare/image_io.hpp"
 
 namespace aosuite {
 namespace {
 
-using ReadExr = int(const unsigned char*, std::size_t, float* (*)(void*, int, int, int), void*,
-                    char*, std::size_t);
-using WriteExr = int(const char*, int, int, const float*, char*, std::size_t);
+// The library is opened at run time (sibling_symbol), never linked: only the types are used.
+using ReadExr = decltype(aosuite_read_exr);
+using WriteExr = decltype(aosuite_write_exr);
 
 template <class Fn>
 struct Entry {

@@ -2,6 +2,8 @@
 // library, opened only when an EXR is read or written (compare/exr_file.cpp), so that PNG-only
 // processes never load it; only C types cross the boundary. (It used OpenImageIO once, whose
 // ~260 libraries took ~360 ms to load: more than the FLIP of a 1080p pair.)
+#include "compare/exr_library.hpp"
+
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
@@ -68,8 +70,7 @@ std::string channel_names(const Imf::ChannelList& list) {
 
 }  // namespace
 
-// Writes a one-channel float image (channel Y) to `path`. 0 on success, else 1 with the reason
-// in err.
+// The entry points' contracts are in compare/exr_library.hpp.
 extern "C" __attribute__((visibility("default"))) int aosuite_write_exr(
     const char* path, int width, int height, const float* pixels, char* err, std::size_t err_len) {
   try {
@@ -88,11 +89,6 @@ extern "C" __attribute__((visibility("default"))) int aosuite_write_exr(
   }
 }
 
-// Reads an EXR held in memory as float R, G, B (or Y alone), interleaved, over its data window.
-// `allocate(user, width, height, channels)` returns room for width * height * channels
-// floats, or nullptr to refuse the size (err then names the size; an allocator may keep a
-// better reason of its own, as compare/exr_file.cpp's does). 0 on success, else 1 with the
-// reason in err: a refusal is never silent, whatever the allocator.
 extern "C" __attribute__((visibility("default"))) int aosuite_read_exr(
     const unsigned char* bytes, std::size_t size,
     float* (*allocate)(void* user, int width, int height, int channels), void* user, char* err,

@@ -5,11 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "compare/exr_library.hpp"
 #include "fuzz/fuzz_util.hpp"
-
-extern "C" int aosuite_read_exr(const unsigned char* bytes, std::size_t size,
-                                float* (*allocate)(void*, int, int, int), void* user, char* err,
-                                std::size_t err_len);
 
 namespace {
 

@@ -1,6 +1,8 @@
 // libaosuite_exr.so's C entry points as any caller sees them: a written image reads back
 // exactly, and an allocator that refuses the size still leaves a reason in err (exr_fuzz found
 // a refusal that said nothing: fuzz/corpus/exr/window_refused_by_allocator.exr).
+#include "compare/exr_library.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cstddef>
@@ -10,30 +12,21 @@
 #include <string>
 #include <vector>
 
-extern "C" int aosuite_write_exr(const char* path, int width, int height, const float* pixels,
-                                 char* err, std::size_t err_len);
-extern "C" int aosuite_read_exr(const unsigned char* bytes, std::size_t size,
-                                float* (*allocate)(void*, int, int, int), void* user, char* err,
-                                std::size_t err_len);
-
 namespace {
 
+// What the library asked room for, and the room given (none when `refuse` is set).
 struct Room {
-  std::vector<float> pixels;
+  bool refuse = false;
   int width = 0, height = 0, channels = 0;
+  std::vector<float> pixels;
 };
 
-float* give_room(void* user, int width, int height, int channels) {
+float* room_for(void* user, int width, int height, int channels) {
   auto& room = *static_cast<Room*>(user);
   room.width = width, room.height = height, room.channels = channels;
+  if (room.refuse) return nullptr;
   room.pixels.assign(std::size_t(width) * std::size_t(height) * std::size_t(channels), -1.0f);
   return room.pixels.data();
-}
-
-float* refuse(void* user, int width, int height, int channels) {
-  give_room(user, width, height, channels);
-  static_cast<Room*>(user)->pixels.clear();
-  return nullptr;
 }
 
 std::vector<unsigned char> written_exr(int width, int height, const std::vector<float>& pixels) {
@@ -56,7 +49,7 @@ TEST(ExrLibrary, AWrittenImageReadsBackExactly) {
   const auto bytes = written_exr(7, 5, pixels);
   Room room;
   char err[512] = {};
-  ASSERT_EQ(aosuite_read_exr(bytes.data(), bytes.size(), &give_room, &room, err, sizeof err), 0)
+  ASSERT_EQ(aosuite_read_exr(bytes.data(), bytes.size(), &room_for, &room, err, sizeof err), 0)
       << err;
   EXPECT_EQ(room.width, 7);
   EXPECT_EQ(room.height, 5);
@@ -67,8 +60,9 @@ TEST(ExrLibrary, AWrittenImageReadsBackExactly) {
 TEST(ExrLibrary, ARefusedSizeIsNamedInTheError) {
   const auto bytes = written_exr(9, 4, ramp(9 * 4));
   Room room;
+  room.refuse = true;
   char err[512] = {};
-  EXPECT_EQ(aosuite_read_exr(bytes.data(), bytes.size(), &refuse, &room, err, sizeof err), 1);
+  EXPECT_EQ(aosuite_read_exr(bytes.data(), bytes.size(), &room_for, &room, err, sizeof err), 1);
   EXPECT_EQ(room.width, 9);  // the allocator was asked for the real size, then refused it
   const std::string reason = err;
   EXPECT_NE(reason.find("9x4"), std::string::npos) << reason;
@@ -80,7 +74,7 @@ TEST(ExrLibrary, TruncatedBytesAreRefusedWithAReason) {
   for (const std::size_t keep : {std::size_t{0}, std::size_t{3}, bytes.size() / 2}) {
     Room room;
     char err[512] = {};
-    EXPECT_EQ(aosuite_read_exr(bytes.data(), keep, &give_room, &room, err, sizeof err), 1);
+    EXPECT_EQ(aosuite_read_exr(bytes.data(), keep, &room_for, &room, err, sizeof err), 1);
     EXPECT_NE(std::string(err), "") << "keeping " << keep << " bytes";
   }
 }
