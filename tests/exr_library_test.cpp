@@ -6,11 +6,12 @@
 #include <gtest/gtest.h>
 
 #include <cstddef>
-#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <string>
 #include <vector>
+
+#include "tests/png_fixture.hpp"
 
 namespace {
 
@@ -30,7 +31,8 @@ float* room_for(void* user, int width, int height, int channels) {
 }
 
 std::vector<unsigned char> written_exr(int width, int height, const std::vector<float>& pixels) {
-  const auto path = std::filesystem::path(testing::TempDir()) / "exr_library_test.exr";
+  const aosuite::test::TempDir dir;  // its own: ctest runs these tests side by side
+  const auto path = dir / "written.exr";
   char err[512] = {};
   EXPECT_EQ(aosuite_write_exr(path.c_str(), width, height, pixels.data(), err, sizeof err), 0)
       << err;
