@@ -6,11 +6,10 @@
 #include <gtest/gtest.h>
 
 #include <cstddef>
-#include <fstream>
-#include <iterator>
 #include <string>
 #include <vector>
 
+#include "common/file_io.hpp"
 #include "tests/png_fixture.hpp"
 
 namespace {
@@ -36,8 +35,7 @@ std::vector<unsigned char> written_exr(int width, int height, const std::vector<
   char err[512] = {};
   EXPECT_EQ(aosuite_write_exr(path.c_str(), width, height, pixels.data(), err, sizeof err), 0)
       << err;
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), {}};
+  return aosuite::read_file(path);
 }
 
 std::vector<float> ramp(int count) {
