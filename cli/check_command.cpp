@@ -286,29 +286,71 @@ void copy_case(const fs::path& from, const fs::path& to) {
   }
 }
 
+// Which of the run's shards these parts are, from each results.json's "i/n" (an unsharded run
+// is 0/1): all of one count, none twice. Throws naming the folder. Returns the count.
+int shard_count(const std::vector<hs::RunResults>& parts, const std::vector<std::string>& dirs,
+                std::set<int>& given) {
+  int count = 0;
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    hs::Selection s;
+    try {
+      if (!parts[i].shard.empty()) hs::set_shard(s, parts[i].shard);  // "" would read GTEST_*
+    } catch (const std::invalid_argument& e) {
+      throw std::runtime_error(hs::printable(fmt::format("{}: {}", dirs[i], e.what())));
+    }
+    if (count != 0 && s.shard_count != count) {
+      throw std::runtime_error(
+          hs::printable(fmt::format("{}: shard {}/{} is of another run than {} shards", dirs[i],
+                                    s.shard_index, s.shard_count, count)));
+    }
+    count = s.shard_count;
+    if (!given.insert(s.shard_index).second) {
+      throw std::runtime_error(hs::printable(
+          fmt::format("{}: shard {}/{} is given twice", dirs[i], s.shard_index, count)));
+    }
+  }
+  return count;
+}
+
 // Shard data is checked as it is read (read_results: ids and files stay inside their folders)
-// and before anything is written: one suite, no case twice.
+// and before anything is written: one suite, no case twice, every shard of the run there
+// unless `partial` (then the report says which are missing).
 int run_merge(const std::string& out, const std::vector<std::string>& shards,
-              const std::string& junit) {
+              const std::string& junit, bool partial) {
   std::vector<hs::RunResults> parts;
-  std::set<std::string> seen;
   for (const std::string& dir : shards) {
     parts.push_back(hs::read_results(dir));
     if (parts.back().suite != parts.front().suite) {
       throw std::runtime_error(hs::printable(fmt::format("{}: suite '{}' differs from '{}'", dir,
                                                          parts.back().suite, parts.front().suite)));
     }
-    for (const hs::CaseResult& c : parts.back().cases) {
+  }
+  std::set<int> given;
+  const int count = shard_count(parts, shards, given);
+  std::set<std::string> seen;
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    for (const hs::CaseResult& c : parts[i].cases) {
       if (!seen.insert(c.id).second) {
         throw std::runtime_error(
-            hs::printable(fmt::format("{}: case '{}' is in two shards", dir, c.id)));
+            hs::printable(fmt::format("{}: case '{}' is in two shards", shards[i], c.id)));
       }
     }
+  }
+  std::string missing;
+  for (int i = 0; i < count; ++i) {
+    if (!given.count(i)) missing += fmt::format("{}{}/{}", missing.empty() ? "" : ", ", i, count);
+  }
+  if (!missing.empty() && !partial) {
+    throw std::runtime_error(fmt::format(
+        "shard{} {} of the run {} missing (--partial merges a part of a run, marked partial)",
+        given.size() + 1 < std::size_t(count) ? "s" : "", missing,
+        given.size() + 1 < std::size_t(count) ? "are" : "is"));
   }
   fs::create_directories(out);
   hs::RunResults merged = parts.front();
   merged.cases.clear();
-  merged.shard.clear();
+  merged.shard = missing.empty() ? "" : "partial, missing " + missing;
+  if (!missing.empty()) fmt::print(stderr, "report merge: a partial run: {} missing\n", missing);
   merged.approve_prefix =
       merged.bless_prefix + " --from-report --report " + hs::shell_quote(fs::path(out).string());
   for (std::size_t i = 0; i < parts.size(); ++i) {
@@ -384,8 +426,11 @@ void add_report_command(CLI::App& app, int& rc) {
   merge->add_option("--out", *out, "merged report folder")->required();
   merge->add_option("--junit", *junit, "also write JUnit XML here");
   merge->add_option("shards", *shards, "report folders of the shards")->required();
-  guarded(merge, rc, "report merge", [out, shards, junit] {
-    return escaped_errors([&] { return run_merge(*out, *shards, *junit); });
+  auto partial = std::make_shared<bool>(false);
+  merge->add_flag("--partial", *partial,
+                  "merge even when shards of the run are missing; the report says which");
+  guarded(merge, rc, "report merge", [out, shards, junit, partial] {
+    return escaped_errors([&] { return run_merge(*out, *shards, *junit, *partial); });
   });
 }
 

@@ -23,7 +23,7 @@ MetricPlan plan_metrics(const std::vector<std::string>& names,
   }
   for (const std::string& spec : gates) metric::add_gate_spec(plan.metrics, spec);
   plan.heatmap = heatmap;
-  if (!heatmap.empty()) metric::gates_for(plan.metrics, metric::find("flip"));
+  if (!heatmap.empty()) metric::gates_for(plan.metrics, metric::heatmap_metric());
   return plan;
 }
 
@@ -35,7 +35,7 @@ MetricRun run_metrics(const MetricPlan& plan, const std::string& a, const std::s
   Picture pa, pb;
   side_by_side([&] { pb = read_picture(b, max_bytes); }, [&] { pa = read_picture(a, max_bytes); });
   for (const metric::Gates& g : plan.metrics) {
-    const bool map = heatmap && g.metric->name == "flip";
+    const bool map = heatmap && g.metric->heatmap;
     metric::Measurement m = metric::measure(*g.metric, pa, pb, {.want_map = map});
     run.json[std::string(g.metric->name)] = m.json();
     std::string line = std::string(g.metric->name) + ":";

@@ -4,6 +4,7 @@
 #include <fmt/ranges.h>
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 #include <system_error>
 
@@ -93,7 +94,10 @@ nlohmann::ordered_json to_json(const reference::ErrorReport& r) {
 reference::ErrorStats error_stats_from_json(const nlohmann::json& j) {
   reference::ErrorStats s;
   s.pixels = j.at("pixels"), s.rmse = j.at("rmse"), s.mae = j.at("mae"), s.bias = j.at("bias");
-  s.psnr = j.at("psnr"), s.ssim = j.at("ssim"), s.noise_floor = j.at("noise_floor");
+  // JSON has no infinity: an exact estimate's PSNR is kept as null (psnr_db's +inf).
+  const nlohmann::json& psnr = j.at("psnr");
+  s.psnr = psnr.is_null() ? HUGE_VAL : psnr.get<double>();
+  s.ssim = j.at("ssim"), s.noise_floor = j.at("noise_floor");
   return s;
 }
 

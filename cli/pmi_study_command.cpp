@@ -16,6 +16,9 @@
 #include <numeric>
 #include <opencv2/core.hpp>
 #include <set>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "cli/commands.hpp"
 #include "cli/pmi_vertex_ao.hpp"
@@ -196,18 +199,21 @@ int run_study(const StudyArgs& a) {
   // The ray-traced per-vertex AO drawn exactly as PMI's map is (per-vertex, unblurred).
   rd::PmiMaps traced_maps;
   traced_maps.object = object, traced_maps.vertex_visibility = traced;
-  for (const auto& [name, t] :
-       {std::pair{"pmi", rd::Technique::kPmi}, std::pair{"raytraced", rd::Technique::kPmi},
-        std::pair{"alchemy", rd::Technique::kAlchemy}, std::pair{"sao", rd::Technique::kSao},
-        std::pair{"mssao", rd::Technique::kMssao}, std::pair{"ue4", rd::Technique::kUe4}}) {
+  // PMI, the ray-traced per-vertex AO drawn as PMI's maps are, then every registered
+  // screen-space technique.
+  std::vector<std::pair<std::string, rd::Technique>> techniques{{"pmi", rd::Technique::kPmi},
+                                                                {"raytraced", rd::Technique::kPmi}};
+  for (const std::string& name : rd::screen_space_technique_names())
+    techniques.emplace_back(name, rd::parse_technique(name));
+  for (const auto& [name, t] : techniques) {
     rd::RenderSettings rs;
     rs.width = a.width, rs.height = a.height, rs.technique = t;
     rs.params = rd::default_params(t);
-    if (t == rd::Technique::kPmi) {
+    if (rd::object_space(t)) {
       rs.params.pmi.viewpoints = chosen.viewpoints, rs.params.pmi.resolution = chosen.resolution;
       rs.params.blur = rd::Blur::kNone;
     }
-    const bool is_traced = std::string_view(name) == "raytraced";
+    const bool is_traced = name == "raytraced";
     const rd::Images img = renderer.render(scene, view, rs, is_traced ? &traced_maps : nullptr);
     const Smoothness s = image_smoothness(img);
     md += fmt::format("| {} | {} | {:.4f} |\n",
@@ -215,7 +221,7 @@ int run_study(const StudyArgs& a) {
                       s.distinct, s.mean_step);
     const std::string stem = fmt::format("{}_{}_{}", scene.name, view.name, name);
     write_png_rgba8(dir / (stem + "_ao_only.png"), img.ao_only);
-    if (t == rd::Technique::kPmi) write_png_rgba8(dir / (stem + "_with_ao.png"), img.with_ao);
+    if (rd::object_space(t)) write_png_rgba8(dir / (stem + "_with_ao.png"), img.with_ao);
   }
   write_text(dir / "pmi_study.md", md);
   fmt::print("{}", md);

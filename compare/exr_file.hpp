@@ -8,7 +8,7 @@
 #include <span>
 #include <string>
 
-#include "compare/picture.hpp"
+#include "compare/rgba_image.hpp"
 
 namespace aosuite {
 

@@ -23,6 +23,7 @@
 #include "compare/magma.hpp"
 #include "compare/parallel_rows.hpp"
 #include "compare/simd_math.hpp"
+#include "compare/srgb.hpp"
 
 // Hot loops get an AVX2 clone picked at load time; the default build targets baseline x86-64.
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
@@ -552,8 +553,7 @@ const float* srgb_to_linear_table() {
   static const std::array<float, 256> table = [] {
     std::array<float, 256> t{};
     for (int i = 0; i < 256; ++i) {
-      const float c = static_cast<float>(i) / 255.0f;
-      t[std::size_t(i)] = c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
+      t[std::size_t(i)] = srgb_to_linear(static_cast<float>(i) / 255.0f);
     }
     return t;
   }();

@@ -16,7 +16,6 @@
 #include <memory>
 #include <utility>
 
-#include "compare/picture.hpp"
 #include "compare/png_fast.hpp"
 #include "compare/png_layout.hpp"
 

@@ -13,10 +13,6 @@
 
 namespace aosuite {
 
-// Images larger than this are refused before any pixel memory is allocated: 2^28 pixels is
-// 1 GiB of RGBA8, already far beyond any render this suite makes.
-inline constexpr std::uint64_t kMaxImagePixels = std::uint64_t{1} << 28;
-
 // Decodes any PNG (grey, palette, 16-bit, tRNS, ...) to RGBA8. No gamma or colour
 // management is applied. `name` is only used in error messages. (compare/opencv.hpp has
 // the cv::Mat forms.)
@@ -25,7 +21,6 @@ RgbaImage decode_png(std::span<const unsigned char> png, const std::string& name
 // it accepts and refuses exactly the files the fast one does (png_layout.hpp has the rule).
 RgbaImage decode_png_general(std::span<const unsigned char> png, const std::string& name);
 RgbaImage read_png(const std::filesystem::path& path);
-struct FloatImage;
 // A 16-bit PNG kept at 16 bits: R, G, B (or grey alone) as v / 65535, alpha dropped
 // (compare/picture.hpp reads every kind of file).
 FloatImage decode_png16(std::span<const unsigned char> png, const std::string& name);

@@ -50,17 +50,27 @@ struct Metric {
   // images finite (nonfinite samples replaced by 0) unless raw_floats.
   Measurement (*measure)(const Picture& reference, const Picture& test, const Request& request);
   bool raw_floats = false;
+  // Its error map is the heat map that `--heatmap` writes and the report shows (one metric).
+  bool heatmap = false;
 };
 
 std::span<const Metric* const> all();
 // Throws std::invalid_argument naming the registered metrics.
 const Metric& find(std::string_view name);
-std::string names();  // "flip, ssim, rmse, psnr"
+std::string names();             // "flip, ssim, rmse, psnr"
+const Metric& heatmap_metric();  // the registered metric whose map is the heat map
 
 // `metric` of test against reference. Throws std::invalid_argument, naming both files, for
 // images of different sizes or kinds (8-bit against float, one channel against three).
 Measurement measure(const Metric& metric, const Picture& reference, const Picture& test,
                     const Request& request = {});
+
+// PSNR in dB of a mean squared error on data of range `data_range`, as scikit-image's
+// peak_signal_noise_ratio: 10 log10(range^2 / MSE), exact for every MSE > 0, and +inf for
+// identical images (MSE 0; `null` in JSON, `inf` in text and CSV). The project's one PSNR (the
+// metric, the AO error statistics): it has no cap, which would merge distinct values of
+// near-identical large images (an 8-bit 4K pair one level apart in one pixel is at 129 dB).
+double psnr_db(double mse, double data_range = 1.0);
 
 // A limit on one stat: the value must be <= limit (is_max) or >= limit.
 struct Limit {

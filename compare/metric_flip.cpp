@@ -1,19 +1,14 @@
 // FLIP as a metric (compare/flip.hpp has the kernel): LDR-FLIP for 8-bit and 16-bit PNGs,
 // HDR-FLIP for EXR, as NVlabs/flip's tool chooses by file type; grey images as R = G = B.
-#include <cmath>
 
 #include "compare/flip.hpp"
 #include "compare/metric.hpp"
+#include "compare/srgb.hpp"
 
 namespace aosuite::metric {
 namespace {
 
 constexpr std::string_view kStats[] = {"mean", "weighted_median", "q1", "q3", "min", "max"};
-
-// The sRGB transfer function's inverse, as the tool applies it to LDR input.
-float srgb_to_linear(float v) {
-  return v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f);
-}
 
 // Three linear channels per pixel.
 std::vector<float> linear_rgb(const FloatImage& f) {
@@ -71,6 +66,7 @@ extern const Metric kFlip{
     .primary = "mean",
     .measure = measure_flip,
     .raw_floats = true,  // the tool's own reading: NaN as 0, Inf as the largest float
+    .heatmap = true,
 };
 
 }  // namespace aosuite::metric

@@ -66,13 +66,16 @@ Measurement measure_rmse(const Picture& reference, const Picture& test, const Re
 
 Measurement measure_psnr(const Picture& reference, const Picture& test, const Request& request) {
   const Errors e = errors(reference, test, request.counted);
-  const double db = e.mse > 0 ? 10.0 * std::log10(1.0 / e.mse) : HUGE_VAL;
   Measurement m;
-  m.metric = "psnr", m.values = {{"db", db}}, m.facts = {{"data_range", 1.0}};
+  m.metric = "psnr", m.values = {{"db", psnr_db(e.mse)}}, m.facts = {{"data_range", 1.0}};
   return m;
 }
 
 }  // namespace
+
+double psnr_db(double mse, double data_range) {
+  return mse > 0 ? 10.0 * std::log10(data_range * data_range / mse) : HUGE_VAL;
+}
 
 extern const Metric kRmse{
     .name = "rmse",

@@ -13,4 +13,10 @@ std::span<const Metric* const> all() {
   return kAll;
 }
 
+const Metric& heatmap_metric() {
+  for (const Metric* m : all())
+    if (m->heatmap) return *m;
+  return *all().front();  // unreachable: FLIP is registered with heatmap = true
+}
+
 }  // namespace aosuite::metric

@@ -13,17 +13,6 @@
 
 namespace aosuite {
 
-struct FloatImage {
-  int width = 0, height = 0;
-  int channels = 0;  // 1 or 3
-  std::vector<float> data;
-  // 16-bit PNGs are sRGB-encoded values v / 65535; EXR holds linear light.
-  bool srgb = false;
-  const float* row(int y) const {
-    return data.data() + std::size_t(y) * std::size_t(width) * std::size_t(channels);
-  }
-};
-
 struct Picture {
   std::string name;  // the file, for messages
   bool is_float = false;

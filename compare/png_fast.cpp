@@ -9,9 +9,10 @@
 #include <stdexcept>
 #include <vector>
 
-#include "compare/image_io.hpp"
+#include "common/file_io.hpp"
 #include "compare/png_layout.hpp"
 #include "compare/png_unfilter.hpp"
+#include "compare/rgba_image.hpp"
 
 namespace aosuite {
 namespace {

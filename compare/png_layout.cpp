@@ -6,9 +6,10 @@
 #include <cstring>
 #include <memory>
 
+#include "common/file_io.hpp"
 #include "common/printable.hpp"
-#include "compare/image_io.hpp"
 #include "compare/inflate.hpp"
+#include "compare/rgba_image.hpp"
 
 namespace aosuite {
 namespace {

@@ -5,9 +5,15 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <memory>
+#include <vector>
 
 namespace aosuite {
+
+// Images larger than this are refused before any pixel memory is allocated: 2^28 pixels is
+// 1 GiB of RGBA8, already far beyond any render this suite makes.
+inline constexpr std::uint64_t kMaxImagePixels = std::uint64_t{1} << 28;
 
 struct ImageSize {
   int width = 0, height = 0;
@@ -60,5 +66,17 @@ class RgbaImage {
 };
 
 RgbaImage copy_of(RgbaView v);
+
+// Float samples, one channel (grey, Y) or three (R, G, B) interleaved, rows packed.
+struct FloatImage {
+  int width = 0, height = 0;
+  int channels = 0;  // 1 or 3
+  std::vector<float> data;
+  // 16-bit PNGs are sRGB-encoded values v / 65535; EXR holds linear light.
+  bool srgb = false;
+  const float* row(int y) const {
+    return data.data() + std::size_t(y) * std::size_t(width) * std::size_t(channels);
+  }
+};
 
 }  // namespace aosuite

@@ -1,7 +1,7 @@
 // Mesh files (renderer/mesh_io.hpp: the structure checks, then assimp) on any bytes: a file is
 // refused with an escaped one-line FileError, or gives a mesh the renderer can draw.
 // The format is the one the bytes claim (PLY's and OFF's magic), else OBJ, which has none.
-#include "compare/image_io.hpp"
+#include "common/file_io.hpp"
 #include "fuzz/renderable.hpp"
 #include "renderer/scene/mesh_io.hpp"
 

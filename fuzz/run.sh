@@ -5,17 +5,31 @@
 # next run. Exits 1 if any target crashed, hung (over 10 s on one input), leaked or ran out of
 # memory (2 GB), naming the input that did it.
 # Usage: fuzz/run.sh [SECONDS] [TARGET...]
+#        fuzz/run.sh --runs N [TARGET...]
+# --runs N is CI's deterministic smoke (the fuzz_smoke test): each target first replays every
+# seed and reproducer of its corpus folder, then makes N executions of mutations from a fixed
+# seed (-seed=1) into an empty scratch corpus, so a commit gets the same answer on every run.
+# Random, open-ended fuzzing (SECONDS) stays here for people; what it finds goes into
+# fuzz/corpus/<target>/ as a reproducer, and from there into every smoke run.
 # AOSUITE_FUZZ_BUILD sets the build folder (default: build-fuzz/ in the repository).
-# AOSUITE_FUZZ_FRESH=1 drops what earlier runs kept and starts from the seeds alone, as CI's
-# fuzz_smoke does (a large kept corpus can hide what one mutation of a seed reaches).
+# AOSUITE_FUZZ_FRESH=1 drops what earlier runs kept and starts from the seeds alone (a large
+# kept corpus can hide what one mutation of a seed reaches).
 set -euo pipefail
 src=$(cd "$(dirname "$0")/.." && pwd)
-seconds=${1:-60}
-if ! [[ $seconds =~ ^[1-9][0-9]*$ ]]; then
-  echo "usage: fuzz/run.sh [SECONDS] [TARGET...]" >&2
+usage() {
+  echo "usage: fuzz/run.sh [SECONDS] [TARGET...] | fuzz/run.sh --runs N [TARGET...]" >&2
   exit 2
+}
+runs="" seconds=60
+if [ "${1:-}" = --runs ]; then
+  runs=${2:-}
+  [[ $runs =~ ^[1-9][0-9]*$ ]] || usage
+  shift 2
+elif [ $# -gt 0 ]; then
+  seconds=$1
+  [[ $seconds =~ ^[1-9][0-9]*$ ]] || usage
+  shift
 fi
-shift $(($# > 0 ? 1 : 0))
 build=${AOSUITE_FUZZ_BUILD:-$src/build-fuzz}
 if [ $# -gt 0 ]; then
   targets=("$@")
@@ -52,13 +66,24 @@ export UBSAN_OPTIONS=print_stacktrace=1
 export LSAN_OPTIONS=suppressions=$src/fuzz/lsan.supp:print_suppressions=0
 failed=()
 for t in "${targets[@]}"; do
+  seeds=$src/fuzz/corpus/${t%_fuzz}
   corpus=$build/corpus/$t artifacts=$build/artifacts/$t/ log=$build/logs/$t.log
-  if [ "${AOSUITE_FUZZ_FRESH:-0}" = 1 ]; then rm -rf "$corpus"; fi
-  mkdir -p "$corpus" "$artifacts"
-  cp -n "$src/fuzz/corpus/${t%_fuzz}/"* "$corpus/"
-  if "$build/fuzz/$t" -max_total_time="$seconds" -rss_limit_mb=2048 -timeout=10 \
+  if [ -n "$runs" ]; then
+    # A scratch corpus that starts empty: the seeds folder is read (replayed first), never
+    # written, and nothing an earlier run kept can change what this one does.
+    corpus=$build/smoke-corpus/$t
+    rm -rf "$corpus"
+    mkdir -p "$corpus" "$artifacts"
+    flags=(-seed=1 -runs="$runs") dirs=("$corpus" "$seeds")
+  else
+    if [ "${AOSUITE_FUZZ_FRESH:-0}" = 1 ]; then rm -rf "$corpus"; fi
+    mkdir -p "$corpus" "$artifacts"
+    cp -n "$seeds/"* "$corpus/"
+    flags=(-max_total_time="$seconds") dirs=("$corpus")
+  fi
+  if "$build/fuzz/$t" "${flags[@]}" -rss_limit_mb=2048 -timeout=10 \
     -dict="$src/fuzz/$(dictionary "$t").dict" -artifact_prefix="$artifacts" \
-    -print_final_stats=1 "$corpus" >"$log" 2>&1; then
+    -print_final_stats=1 "${dirs[@]}" >"$log" 2>&1; then
     # libFuzzer's last status line: executions, coverage (cov: edges), corpus, exec/s, memory.
     echo "fuzz: $t: $(grep -E '^#[0-9]+[[:space:]]+DONE' "$log" | tail -n 1)"
   else
@@ -70,7 +95,8 @@ for t in "${targets[@]}"; do
     echo "fuzz: reproduce with: $build/fuzz/$t REPRODUCER" >&2
   fi
 done
-echo "fuzz: ${#targets[@]} targets, ${seconds} s each, $((SECONDS - start)) s in all"
+if [ -n "$runs" ]; then each="seeds + $runs executions from seed 1"; else each="$seconds s"; fi
+echo "fuzz: ${#targets[@]} targets, $each each, $((SECONDS - start)) s in all"
 if [ ${#failed[@]} -gt 0 ]; then
   echo "fuzz: failed: ${failed[*]}" >&2
   exit 1

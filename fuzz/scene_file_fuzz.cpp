@@ -1,7 +1,7 @@
 // Scene files (renderer/scene_file.hpp) on any bytes: a file is refused with an escaped
 // one-line FileError, or gives a scene the renderer accepts, every mesh and view of it.
 // Beside the scene lie one small mesh of each format (tri.ply, tri.obj, tri.off) for `file`.
-#include "compare/image_io.hpp"
+#include "common/file_io.hpp"
 #include "fuzz/renderable.hpp"
 #include "renderer/scene/scene_file.hpp"
 #include "renderer/scene/view_check.hpp"

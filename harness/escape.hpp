@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <string_view>
 
@@ -51,6 +52,29 @@ inline std::string escape_markup(std::string_view text) {
         break;
       default:
         out += ch;
+    }
+  }
+  return out;
+}
+
+// JSON to embed in a <script type="application/json"> element: no byte sequence of any string
+// in it can end the element or change how the HTML parser reads it (`</script>`, `<!--` then
+// `<script>`, which sends the parser into its "double escaped" state, where the element's end
+// tag no longer ends it). `<`, `>` and `&` only occur inside JSON strings, where \u003c,
+// \u003e and \u0026 mean the same characters to JSON.parse.
+inline std::string json_in_script(const nlohmann::json& j) {
+  const std::string text = j.dump();
+  std::string out;
+  out.reserve(text.size());
+  for (const char c : text) {
+    if (c == '<') {
+      out += "\\u003c";
+    } else if (c == '>') {
+      out += "\\u003e";
+    } else if (c == '&') {
+      out += "\\u0026";
+    } else {
+      out += c;
     }
   }
   return out;

@@ -248,29 +248,14 @@ void write_html_report(const RunResults& run, const fs::path& report_dir,
   // Failures and NEW first, then flaky, then passes by margin: near misses before easy passes.
   std::vector<std::size_t> order(run.cases.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-  auto rank = [](Status s) {
-    switch (s) {
-      case Status::kError:
-        return 0;
-      case Status::kFail:
-        return 1;
-      case Status::kNew:
-        return 2;
-      case Status::kFlaky:
-        return 3;
-      case Status::kPass:
-        return 4;
-    }
-    return 4;
-  };
   std::vector<double> margins(run.cases.size());
   for (std::size_t i = 0; i < run.cases.size(); ++i) {
     const double m = margin_value(run.cases[i]);
     margins[i] = std::isnan(m) ? 1e300 : m;
   }
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-    const int ra = rank(run.cases[a].status), rb = rank(run.cases[b].status);
-    return ra != rb ? ra < rb : margins[a] < margins[b];
+    const int sa = severity(run.cases[a].status), sb = severity(run.cases[b].status);
+    return sa != sb ? sa > sb : margins[a] < margins[b];
   });
 
   // The table's rows are drawn by the page from this, a screenful at a time: a report of
@@ -387,21 +372,15 @@ void write_html_report(const RunResults& run, const fs::path& report_dir,
     body += "<h2>Run time against error</h2>\n" + sweep_link(report_dir);
   }
   body += "</main><aside id=detail hidden></aside>\n";
-  auto script_json = [](const nlohmann::json& j) {
-    std::string text = j.dump();
-    for (std::size_t at = 0; (at = text.find("</", at)) != std::string::npos; at += 3) {
-      text.replace(at, 2, "<\\/");
-    }
-    return text;
-  };
   const std::string page = fmt::format(
       "<!doctype html>\n<html lang=en><head><meta charset=utf-8><title>aosuite: {}</title>"
       "<style>{}</style></head><body>\n{}<script type=\"application/json\" id=meta>{}</script>"
       "<script type=\"application/json\" id=data>{}</script>"
       "<script type=\"application/json\" id=images>{}</script>"
       "<script>{}</script></body></html>\n",
-      escape_markup(run.suite), report_assets().at("report.css"), body, script_json(meta),
-      script_json(data), options.single_file ? pics.json() : "{}", report_assets().at("report.js"));
+      escape_markup(run.suite), report_assets().at("report.css"), body, json_in_script(meta),
+      json_in_script(data), options.single_file ? pics.json() : "{}",
+      report_assets().at("report.js"));
   fs::create_directories(report_dir);
   write_report_file(report_dir / "index.html",
                     {reinterpret_cast<const unsigned char*>(page.data()), page.size()});

@@ -29,6 +29,24 @@ std::string_view status_name(Status s) {
   return "ERROR";
 }
 
+int severity(Status s) {
+  switch (s) {
+    case Status::kError:
+      return 4;
+    case Status::kFail:
+      return 3;
+    case Status::kNew:
+      return 2;
+    case Status::kFlaky:
+      return 1;
+    case Status::kPass:
+      return 0;
+  }
+  return 4;
+}
+
+Status worst(Status a, Status b) { return severity(a) >= severity(b) ? a : b; }
+
 Status parse_status(std::string_view name) {
   for (Status s : {Status::kPass, Status::kFail, Status::kNew, Status::kError, Status::kFlaky}) {
     if (status_name(s) == name) return s;
@@ -99,7 +117,7 @@ void measure_set(const std::vector<metric::Gates>& gates, const std::string& reg
                  const Picture& golden, const Picture& render, bool want_map,
                  const Counted* counted, ImageVerdict& v) {
   for (const metric::Gates& g : gates) {
-    const bool map = want_map && v.heatmap.empty() && g.metric->name == "flip";
+    const bool map = want_map && v.heatmap.empty() && g.metric->heatmap;
     metric::Measurement m =
         metric::measure(*g.metric, golden, render, {.want_map = map, .counted = counted});
     for (metric::Outcome& o : metric::judge(g, m)) {

@@ -15,6 +15,10 @@ namespace aosuite::harness {
 // kFlaky: a case that failed, then passed when run again (--retries); never an image's verdict.
 enum class Status { kPass, kFail, kNew, kError, kFlaky };
 std::string_view status_name(Status s);  // PASS FAIL NEW ERROR FLAKY
+// How much a status needs a person's eyes: ERROR 4, FAIL 3, NEW 2, FLAKY 1, PASS 0. A case is
+// as severe as its worst image, and the report lists the most severe first.
+int severity(Status s);
+Status worst(Status a, Status b);  // the more severe; `a` on a tie
 Status parse_status(std::string_view name);
 
 struct ImageVerdict {

@@ -292,13 +292,6 @@ const cv::Mat& pixels(Rendered& r, const std::string& name, const fs::path& case
   return m;
 }
 
-Status worst(Status a, Status b) {
-  auto rank = [](Status s) {
-    return s == Status::kError ? 3 : s == Status::kFail ? 2 : s == Status::kNew ? 1 : 0;
-  };
-  return rank(a) >= rank(b) ? a : b;
-}
-
 // A parameter's value with its type: a number, a name, a list of numbers.
 // Floats go through their shortest text, so 0.012f is 0.012 in JSON, not 0.012000000104...
 nlohmann::json typed(const rd::ParamValue& v) {

@@ -170,7 +170,7 @@ void read_tolerance(const Reader& r, const fs::path& dir, const toml::node& n, T
 // What [defaults] and a [[case]] may both say.
 struct Common {
   int width = 320, height = 180;
-  std::vector<std::string> techniques{"alchemy", "sao", "mssao", "ue4"};
+  std::vector<std::string> techniques = renderer::screen_space_technique_names();
   std::vector<std::string> images{"with_ao"};
   std::map<std::string, std::string> params;
   std::map<std::string, toml::source_region> param_at;

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "compare/metric.hpp"
 #include "compare/ssim.hpp"
 
 namespace aosuite::reference {
@@ -26,7 +27,7 @@ ErrorStats stats(const cv::Mat& est, const cv::Mat& ref, const cv::Mat& ssim, co
   if (s.pixels == 0) return s;
   const double n = static_cast<double>(s.pixels);
   s.rmse = std::sqrt(sq / n), s.mae = abs / n, s.bias = signed_sum / n, s.ssim = ssim_sum / n;
-  s.psnr = 10 * std::log10(1 / std::max(sq / n, 1e-10));
+  s.psnr = metric::psnr_db(sq / n);
   s.noise_floor = std::sqrt(std::max(var, 0.0) / n / rays);
   return s;
 }

@@ -12,7 +12,7 @@ struct ErrorStats {
   std::size_t pixels = 0;  // all other fields are 0 when there are none
   double rmse = 0, mae = 0;
   double bias = 0;  // mean(estimate - reference): negative = darker than the truth
-  double psnr = 0;  // 10 log10(1 / MSE), capped at 100 dB (MSE 1e-10) so it stays finite
+  double psnr = 0;  // 10 log10(1 / MSE), compare/metric.hpp's psnr_db: +inf when exact
   double ssim = 0;  // mean of the SSIM map over these pixels
   // The reference's own noise, RMS over these pixels: sqrt(mean(A(1-A)) / N), the i.i.d.
   // bound on the estimator's per-pixel spread. RMSE near it is indistinguishable from noise.

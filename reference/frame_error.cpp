@@ -5,19 +5,14 @@
 
 #include "compare/metric.hpp"
 #include "compare/opencv.hpp"
+#include "compare/srgb.hpp"
 
 namespace aosuite::reference {
 namespace {
 
-float to_linear(float c) {
-  return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
-}
-
 // blend.frag's to_srgb, then 8 bits as the GL read-back rounds them.
 unsigned char to_srgb8(float c) {
-  c = std::clamp(c, 0.0f, 1.0f);
-  const float s = c < 0.0031308f ? c * 12.92f : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
-  return static_cast<unsigned char>(std::lround(s * 255.0f));
+  return static_cast<unsigned char>(std::lround(linear_to_srgb(c) * 255.0f));
 }
 
 }  // namespace
@@ -33,7 +28,7 @@ cv::Mat shade(const cv::Mat& no_ao, const cv::Mat& ao, const cv::Mat& depth) {
       if (!(depth.at<float>(y, x) > 0)) continue;  // sky: no AO
       const float a = std::clamp(ao.at<float>(y, x), 0.0f, 1.0f);
       cv::Vec4b& p = out.at<cv::Vec4b>(y, x);
-      for (int c = 0; c < 3; ++c) p[c] = to_srgb8(to_linear(float(p[c]) / 255.0f) * a);
+      for (int c = 0; c < 3; ++c) p[c] = to_srgb8(srgb_to_linear(float(p[c]) / 255.0f) * a);
     }
   }
   return out;

@@ -99,7 +99,7 @@ void validate(const View& view, const RenderSettings& s) {
          " is outside 1..16384 per side");
   }
   check_params(s.params);
-  if (s.technique == Technique::kPmi) make_icosphere(s.params.pmi.viewpoints);  // a bad count
+  if (object_space(s.technique)) make_icosphere(s.params.pmi.viewpoints);  // a bad count
   if (const auto problem = view_problem(view))  // shared with scene files (view_check.hpp)
     fail("view '" + view.name + "': " + problem->why);
 }
@@ -135,7 +135,7 @@ Images Renderer::render(const Scene& scene, const View& view, const RenderSettin
 
   const bool want_ao = s.outputs.needs_ao();
   if (want_ao) {
-    if (s.technique == Technique::kPmi) {  // object space: cached maps drawn over the scene
+    if (object_space(s.technique)) {  // PMI: cached maps drawn over the scene
       const auto cached = pmi_override ? nullptr : pmi_maps(scene, pmi_settings(s.params));
       if (!st.pmi_pass) st.pmi_pass = std::make_unique<PmiPass>();
       timers.push_back(

@@ -3,8 +3,6 @@
 #include <stdexcept>
 #include <string>
 
-#include "renderer/passes/ao_pass.hpp"
-
 namespace aosuite::renderer {
 
 // Each screen-space technique's pass, in its own file.
@@ -71,6 +69,13 @@ const TechniqueInfo& technique_info(Technique t) {
     if (info.id == t) return info;
   }
   throw std::invalid_argument("unregistered technique");
+}
+
+std::vector<std::string> screen_space_technique_names() {
+  std::vector<std::string> out;
+  for (const TechniqueInfo& info : kTechniques)
+    if (info.space == Space::kScreen) out.emplace_back(info.name);
+  return out;
 }
 
 std::string technique_names(std::string_view separator) {

@@ -8,6 +8,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace aosuite::renderer {
 
@@ -83,5 +84,11 @@ std::string_view technique_name(Technique t);
 // "alchemy|sao|..." with `separator` between the names.
 std::string technique_names(std::string_view separator);
 inline AoParams default_params(Technique t) { return technique_info(t).defaults(); }
+// Object space (PMI): the Renderer draws the technique's cached per-polygon maps itself
+// instead of running an AoPass over the G-buffer.
+inline bool object_space(Technique t) { return technique_info(t).space == Space::kObject; }
+// The registered screen-space techniques' names, in registry order: what a suite renders when
+// it names no techniques.
+std::vector<std::string> screen_space_technique_names();
 
 }  // namespace aosuite::renderer

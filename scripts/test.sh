@@ -1,8 +1,20 @@
 #!/usr/bin/env bash
-# Sets up, builds and runs every test (unit tests and the differential test against the real
-# Resemble.js in headless Chromium, which installs itself on first use).
-# Extra arguments go to ctest, e.g. `scripts/test.sh -L unit` or `-LE oracle`.
+# Sets up, builds and runs the tests, in two tiers:
+#   scripts/test.sh          every behavioural test: unit, renderer, harness, suite, sweep, bench
+#                            smoke runs, and the differential tests against the real Resemble.js
+#                            (headless Chromium, installs itself on first use) and the metric
+#                            oracles; everything but the `build` label.
+#   scripts/test.sh --all    adds the `build` label: the second builds (without OSMesa; ASan +
+#                            UBSan) and the deterministic fuzz smoke. CI (.ci/run) runs this.
+# Other arguments go to ctest, e.g. `scripts/test.sh -L unit` or `scripts/test.sh --all -R fuzz`.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+tier=(-LE '^build$')
+args=()
+for a in "$@"; do
+  if [ "$a" = --all ]; then tier=(); else args+=("$a"); fi
+done
 scripts/setup.sh
-ctest --test-dir build --output-on-failure -j "$(nproc)" "$@"
+start=$SECONDS
+ctest --test-dir build --output-on-failure -j "$(nproc)" "${tier[@]}" "${args[@]}"
+echo "[test] ctest took $((SECONDS - start)) s"

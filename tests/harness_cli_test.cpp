@@ -149,6 +149,22 @@ TEST_F(HarnessCli, ShardsMergeIntoOneReport) {
     EXPECT_NE(html.find(id), std::string::npos) << id;
   }
   EXPECT_TRUE(fs::exists(dir_ / "m" / "cases" / "corner-front-sao-48x27" / "with_ao.png"));
+
+  // A shard missing is refused, naming it, and writes nothing; --partial merges and says so.
+  test::Outcome p = aosuite("report merge --out p a");
+  EXPECT_EQ(p.rc, 2) << p.out << p.err;
+  EXPECT_NE(p.err.find("shard 1/2 of the run is missing"), std::string::npos) << p.err;
+  EXPECT_FALSE(fs::exists(dir_ / "p"));
+  p = aosuite("report merge --out p a a");
+  EXPECT_EQ(p.rc, 2) << p.out << p.err;
+  EXPECT_NE(p.err.find("a: shard 0/2 is given twice"), std::string::npos) << p.err;
+  p = aosuite("report merge --out p a --partial");
+  EXPECT_EQ(p.rc, 0) << p.out << p.err;
+  EXPECT_NE(p.err.find("a partial run: 1/2 missing"), std::string::npos) << p.err;
+  const auto part = nlohmann::json::parse(read_text(dir_ / "p" / "results.json"));
+  EXPECT_EQ(part["shard"], "partial, missing 1/2");
+  EXPECT_EQ(part["cases"].size(), a["cases"].size());
+  EXPECT_NE(read_text(dir_ / "p" / "index.html").find("partial, missing 1/2"), std::string::npos);
 }
 
 TEST_F(HarnessCli, BadInputIsAClearErrorAndLosesNothing) {
@@ -353,7 +369,7 @@ TEST_F(HarnessCli, PathsStayInsideTheirFolders) {
   const fs::path image = dir_ / "a" / "cases" / id / "with_ao.png";
   fs::remove(image);
   fs::create_symlink(dir_ / "secret.txt", image);
-  r = aosuite("report merge --out m a");
+  r = aosuite("report merge --out m a --partial");
   EXPECT_EQ(r.rc, 0) << r.out << r.err;
   EXPECT_FALSE(fs::exists(dir_ / "m" / "cases" / id / "with_ao.png"));
   EXPECT_EQ(read_text(dir_ / "m" / "index.html").find("VE9QU0VDUkVU"), std::string::npos);

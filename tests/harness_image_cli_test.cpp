@@ -329,6 +329,36 @@ TEST_F(ImageCases, FolderModeReportsChangedNewAndDeletedAndBlessAcceptsThem) {
 }
 
 // --json: one object per case as it finishes, then a summary; `scenes --json` likewise.
+// No text in a name or in a command's stderr can blank the report: `<!--<script>` in a script
+// element's data sends Chromium's parser into a state where `</script>` no longer ends it, and
+// the table drew no row. The page is checked as Chromium builds it.
+TEST_F(ImageCases, MarkupInNamesAndStderrCannotEndTheReportsData) {
+  const std::string payload = "<!--<script>";
+  for (const char* d : {"actual", "expected"}) fs::create_directories(dir_ / d);
+  const fs::path red = dir_ / "s" / "red.png", green = dir_ / "s" / "green.png";
+  fs::copy_file(green, dir_ / "actual" / (payload + "a.png"));
+  fs::copy_file(red, dir_ / "expected" / (payload + "a.png"));
+  fs::copy_file(green, dir_ / "actual" / "b.png");
+  fs::copy_file(red, dir_ / "expected" / "b.png");
+  test::Outcome r = aosuite("check --actual actual --expected expected --report rep");
+  ASSERT_EQ(r.rc, 1) << r.out << r.err;
+  const std::string html = read_text(dir_ / "rep" / "index.html");
+  const std::string tag = "<script type=\"application/json\" id=data>";
+  const std::size_t d0 = html.find(tag) + tag.size();
+  const std::string data = html.substr(d0, html.find("</script>", d0) - d0);
+  EXPECT_EQ(data.find('<'), std::string::npos) << data;
+  EXPECT_NE(nlohmann::json::parse(data).dump().find(payload), std::string::npos);
+  r = test::run_shell("chromium --headless --no-sandbox --disable-gpu --dump-dom 'file://" +
+                          (dir_ / "rep" / "index.html").string() + "'",
+                      dir_.path());
+  ASSERT_EQ(r.rc, 0) << r.err;
+  std::size_t rows = 0;
+  for (std::size_t at = 0; (at = r.out.find("<tr data-i=\"", at)) != std::string::npos; ++at)
+    ++rows;
+  EXPECT_EQ(rows, 2u) << r.out;
+  EXPECT_NE(r.out.find("&lt;!--&lt;script&gt;a.png"), std::string::npos) << r.out;
+}
+
 TEST_F(ImageCases, JsonOutputIsOneObjectPerCaseThenASummary) {
   std::ofstream(dir_ / "s" / "t.toml", std::ios::app) << R"(
 [[case]]

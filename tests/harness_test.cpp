@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <fstream>
 
@@ -42,6 +43,19 @@ class SuiteFile : public ::testing::Test {
   }
   test::TempDir dir_;
 };
+
+// With no `techniques`, a case renders every registered screen-space technique (the registry
+// is the one list: a new technique joins such suites without an edit in the harness).
+TEST_F(SuiteFile, NoTechniquesMeansEveryScreenSpaceTechniqueOfTheRegistry) {
+  const Suite s = load_suite(write("[[case]]\nscene = \"plane\"\nviews = [\"above\"]\n"));
+  std::vector<std::string> rendered;
+  for (const Case& k : s.cases) rendered.emplace_back(renderer::technique_name(k.technique));
+  std::vector<std::string> expected;
+  for (const renderer::TechniqueInfo& t : renderer::techniques())
+    if (t.space == renderer::Space::kScreen) expected.emplace_back(t.name);
+  EXPECT_EQ(rendered, expected);
+  EXPECT_NE(std::find(rendered.begin(), rendered.end(), "gtao"), rendered.end());
+}
 
 TEST_F(SuiteFile, ExpandsScenesViewsAndTechniquesWithDefaultsAndOverrides) {
   const Suite s = load_suite(write(R"(

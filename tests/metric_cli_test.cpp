@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "compare/metric.hpp"
 #include "compare/opencv.hpp"
 #include "png_fixture.hpp"
 #include "process.hpp"
@@ -153,6 +154,29 @@ TEST(MetricCli, SixteenBitPngsKeepTheirSixteenBits) {
   EXPECT_NEAR(j.at("psnr").at("db").get<double>(), 20 * std::log10(65535.0), 1e-3);
   // Resemble.js sees what a canvas sees: 8 bits, where these are the same.
   EXPECT_EQ(compare(dir, (dir / "a.png").string() + " " + (dir / "b.png").string()).rc, 0);
+}
+
+// The one PSNR (compare/metric.hpp's psnr_db), decided: identical images are +inf, `null` in
+// JSON, for the metric and the AO error statistics alike; any difference is exact, uncapped.
+TEST(MetricCli, IdenticalImagesHaveAnInfinitePsnrAndNearIdenticalOnesAreNotCapped) {
+  EXPECT_EQ(metric::psnr_db(0), HUGE_VAL);
+  EXPECT_DOUBLE_EQ(metric::psnr_db(0.01), 20);
+  EXPECT_DOUBLE_EQ(metric::psnr_db(1e-13), 130);  // a 100 dB cap would read 100 here
+  test::TempDir dir;
+  // 512 x 512, one sample one 8-bit level apart: MSE (257 / 65535)^2 / (3 * 512^2), 107.1 dB.
+  std::vector<std::uint16_t> a(512 * 512 * 3, 30000), b = a;
+  b[7] = 30257;  // 257 / 65535 is one 8-bit level
+  write_png16(dir / "a.png", 512, 512, a);
+  write_png16(dir / "b.png", 512, 512, b);
+  const auto psnr = [&](const char* x, const char* y) {
+    const Outcome r =
+        compare(dir, (dir / x).string() + " " + (dir / y).string() + " --metric psnr --json");
+    EXPECT_EQ(r.rc, 0) << r.err;
+    return nlohmann::json::parse(r.out).at("psnr").at("db");
+  };
+  EXPECT_TRUE(psnr("a.png", "a.png").is_null());
+  const double mse = std::pow(257.0 / 65535, 2) / (512.0 * 512 * 3);
+  EXPECT_NEAR(psnr("a.png", "b.png").get<double>(), 10 * std::log10(1 / mse), 1e-5);  // floats
 }
 
 TEST(MetricCli, GatesDecideTheExitStatusAndTheHeatmapIsWritten) {

@@ -11,6 +11,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 
+#include "compare/metric.hpp"
 #include "compare/metrics_cv.hpp"
 #include "tests/metric_pairs.hpp"
 
@@ -165,6 +166,15 @@ TEST(Flip, ErrorMapImages) {
   const auto grey = flip::error_map_image(r, flip::ErrorMapStyle::grey);
   EXPECT_EQ(grey.data()[4], 128);
   EXPECT_EQ(grey.data()[11], 255);
+}
+
+// The heat map is one metric's map, chosen in the registry (compare, check and the report ask
+// it, none names a metric): exactly one registered metric draws it, FLIP.
+TEST(MetricRegistry, ExactlyOneMetricDrawsTheHeatMap) {
+  int drawing = 0;
+  for (const metric::Metric* m : metric::all()) drawing += m->heatmap;
+  EXPECT_EQ(drawing, 1);
+  EXPECT_EQ(metric::heatmap_metric().name, "flip");
 }
 
 TEST(Ssim, SmallAndDegenerateInputs) {

@@ -16,8 +16,8 @@
 #include <regex>
 #include <thread>
 
+#include "common/file_io.hpp"
 #include "common/printable.hpp"
-#include "compare/image_io.hpp"
 #include "png_fixture.hpp"
 #include "process.hpp"
 #include "renderer/scene/mesh_io.hpp"

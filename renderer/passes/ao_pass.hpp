@@ -24,7 +24,4 @@ std::unique_ptr<AoPass> make_ao_pass(Technique technique);
 // `fragment` (a file in renderer/passes/shaders/), which reads shaders/ao_uniforms.glsl's block.
 std::unique_ptr<AoPass> make_gbuffer_ao_pass(const char* fragment);
 
-// SAO's discrepancy-minimising spiral turns for s samples (G3D's table), 7 beyond it.
-int spiral_turns(int samples);
-
 }  // namespace aosuite::renderer

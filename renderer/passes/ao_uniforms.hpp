@@ -27,6 +27,9 @@ static_assert(sizeof(AoUniformBlock) == 48);
 
 inline constexpr GLuint kAoUniformBinding = 0;  // the block's `binding` in the GLSL
 
+// SAO's discrepancy-minimising spiral turns for s samples (G3D's table), 7 beyond it.
+int spiral_turns(int samples);
+
 // Every field from the parameters and the camera; max_pixel_radius unbounded (MSSAO caps it).
 AoUniformBlock ao_uniform_block(const AoParams& params, const Camera& camera);
 

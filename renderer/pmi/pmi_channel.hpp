@@ -16,6 +16,7 @@
 #include <span>
 #include <vector>
 
+#include "renderer/pmi/pmi_object.hpp"
 #include "renderer/scene/scene.hpp"
 #include "renderer/technique.hpp"
 
@@ -26,24 +27,6 @@ inline constexpr float kSphereFactor = 3;
 // With importance_best = k, the k best views share this much of p(V), the rest share the rest.
 // Best = lowest VMI of the area channel (Feixas et al. 2009: the most balanced projection).
 inline constexpr double kBestViewsShare = 0.99;
-
-// The object's polygons: the scene's non-ground meshes concatenated (triangles with an index
-// out of range or a non-finite corner are left out, as the G-buffer pass leaves them out).
-struct PmiObject {
-  std::vector<glm::vec3> positions;
-  std::vector<glm::uvec3> triangles;
-  std::vector<int> mesh_vertex_base;  // per scene mesh: its first vertex here; -1 for ground
-  glm::vec3 centre{0};
-  float radius = 0;  // bounding sphere about `centre`
-};
-// Throws std::invalid_argument when the scene has no non-ground triangle.
-PmiObject pmi_object(const Scene& scene);
-
-// The camera of the viewpoint at `eye`: looking at the object's centre, its vertical field of
-// view just holding the bounding sphere, its near plane just in front of it.
-View viewpoint_view(const PmiObject& object, glm::vec3 eye);
-// The far plane that goes with it: just behind the bounding sphere.
-float viewpoint_far(const PmiObject& object, glm::vec3 eye);
 
 struct PmiSettings {
   int viewpoints = 162;            // 12, 42, 162, 642 or 2562

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "renderer/gl/gl_objects.hpp"
-#include "renderer/pmi/pmi_channel.hpp"
+#include "renderer/pmi/pmi_object.hpp"
 
 namespace aosuite::renderer {
 

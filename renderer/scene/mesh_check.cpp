@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "common/file_io.hpp"
 #include "common/printable.hpp"
-#include "compare/image_io.hpp"
 
 namespace aosuite::renderer {
 namespace {

@@ -8,8 +8,8 @@
 #include <assimp/Importer.hpp>
 #include <cmath>
 
+#include "common/file_io.hpp"
 #include "common/printable.hpp"
-#include "compare/image_io.hpp"
 #include "renderer/scene/mesh_check.hpp"
 
 namespace aosuite::renderer {

@@ -3,7 +3,7 @@
 
 #include <filesystem>
 
-#include "renderer/scene/scene.hpp"
+#include "renderer/scene/mesh.hpp"
 
 namespace aosuite::renderer {
 

@@ -10,7 +10,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <stdexcept>
 
-#include "compare/image_io.hpp"
+#include "common/file_io.hpp"
 #include "renderer/scene/mesh_io.hpp"
 
 #ifndef AOSUITE_ASSET_DIR
@@ -19,20 +19,6 @@
 
 namespace aosuite::renderer {
 
-void compute_normals(Mesh& mesh) {
-  mesh.normals.assign(mesh.positions.size(), glm::vec3(0));
-  for (const glm::uvec3& t : mesh.triangles) {
-    const glm::vec3 a = mesh.positions[t.x], b = mesh.positions[t.y], c = mesh.positions[t.z];
-    const glm::vec3 n = glm::cross(b - a, c - a);  // length = twice the area: area weighting
-    if (!std::isfinite(n.x + n.y + n.z)) continue;
-    mesh.normals[t.x] += n, mesh.normals[t.y] += n, mesh.normals[t.z] += n;
-  }
-  for (glm::vec3& n : mesh.normals) {
-    const float len = glm::length(n);
-    n = len > 0 && std::isfinite(len) ? n / len : glm::vec3(0, 1, 0);
-  }
-}
-
 Mesh make_quad(glm::vec3 corner, glm::vec3 edge_u, glm::vec3 edge_v, glm::vec3 colour) {
   Mesh m;
   m.colour = colour;
@@ -40,13 +26,6 @@ Mesh make_quad(glm::vec3 corner, glm::vec3 edge_u, glm::vec3 edge_v, glm::vec3 c
   m.triangles = {{0, 1, 2}, {0, 2, 3}};
   compute_normals(m);
   return m;
-}
-
-void append_mesh(Mesh& into, const Mesh& part) {
-  const auto base = static_cast<unsigned>(into.positions.size());
-  into.positions.insert(into.positions.end(), part.positions.begin(), part.positions.end());
-  into.normals.insert(into.normals.end(), part.normals.begin(), part.normals.end());
-  for (const glm::uvec3& t : part.triangles) into.triangles.push_back(t + glm::uvec3(base));
 }
 
 Mesh make_box(glm::vec3 lo, glm::vec3 hi, glm::vec3 colour) {

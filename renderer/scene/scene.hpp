@@ -8,17 +8,9 @@
 #include <string_view>
 #include <vector>
 
-namespace aosuite::renderer {
+#include "renderer/scene/mesh.hpp"
 
-struct Mesh {
-  std::vector<glm::vec3> positions;
-  std::vector<glm::vec3> normals;  // per vertex; computed when a loader has none
-  std::vector<glm::uvec3> triangles;
-  glm::vec3 colour{0.8f};
-  // A ground plane: not part of "the object" for object-space techniques (PMI), whose
-  // viewpoint sphere a 40 m plane would swallow.
-  bool ground = false;
-};
+namespace aosuite::renderer {
 
 struct View {
   std::string name;
@@ -35,19 +27,12 @@ struct Scene {
   std::vector<View> views;
 };
 
-// Area-weighted vertex normals; zero-area triangles contribute nothing and a vertex with no
-// usable triangle gets +y, so no NaN ever reaches the G-buffer.
-void compute_normals(Mesh& mesh);
-
 // Geometry builders, all with normals.
 Mesh make_box(glm::vec3 min, glm::vec3 max, glm::vec3 colour);
 Mesh make_quad(glm::vec3 corner, glm::vec3 edge_u, glm::vec3 edge_v, glm::vec3 colour);
 Mesh make_sphere(glm::vec3 centre, float radius, int segments, glm::vec3 colour);
 // A gable roof (triangular prism) over the box min..max, ridge along x, `height` above max.y.
 Mesh make_gable_roof(glm::vec3 min, glm::vec3 max, float height, glm::vec3 colour);
-
-// Appends `part`'s vertices and triangles to `into` (its colour is not changed).
-void append_mesh(Mesh& into, const Mesh& part);
 
 // Where a mesh goes, applied in this order: fit (centre the bounding box of its triangles on
 // the origin and scale it uniformly so its longest side is `fit`: scanned meshes come in

@@ -12,9 +12,9 @@
 #include <stdexcept>
 #include <string>
 
+#include "common/file_io.hpp"
 #include "common/printable.hpp"
 #include "common/toml_reader.hpp"
-#include "compare/image_io.hpp"
 #include "renderer/scene/mesh_io.hpp"
 #include "renderer/scene/view_check.hpp"
 

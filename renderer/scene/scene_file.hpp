@@ -1,4 +1,4 @@
-// Scenes from TOML files (format in README.md, "Scene files"), and the one entry point that
+// Scenes from TOML files (format in docs/rendering.md, "Scene files"), and the one entry point that
 // takes either a built-in scene's name or a scene file's path.
 #pragma once
 
@@ -10,7 +10,7 @@
 
 namespace aosuite::renderer {
 
-// Scene files may make at most this many triangles in all (README, "Scene files"); the
+// Scene files may make at most this many triangles in all (docs/rendering.md, "Scene files"); the
 // environment variable AOSUITE_MAX_TRIANGLES replaces it.
 inline constexpr std::uint64_t kDefaultMaxSceneTriangles = 50'000'000;
 // AOSUITE_MAX_TRIANGLES when set (a positive integer, else std::invalid_argument), else the

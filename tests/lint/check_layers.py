@@ -1,29 +1,95 @@
 #!/usr/bin/env python3
-"""Fails when a lower layer includes a higher one.
+"""Fails when an include points the wrong way.
 
-The layers, lowest first: common, compare, renderer, reference, harness, cli. A file may
-include its own layer and those below it, never one above (data flows one way).
+1. Layers: each folder may include itself and the folders LAYERS gives it, never one above
+   (data flows one way). The renderer stands on common alone: it makes images, it never
+   compares them.
+2. Units: a header and its source file (x.hpp, x.cpp) are one unit. No unit may include a
+   unit that includes it back, directly or through others (inside a folder as across them).
     tests/lint/check_layers.py SOURCE_DIR
 """
 import pathlib
 import re
 import sys
 
-LAYERS = ["common", "compare", "renderer", "reference", "harness", "cli"]
+# Each layer and what it may include besides itself, lowest first.
+LAYERS = {
+    "common": set(),
+    "compare": {"common"},
+    "renderer": {"common"},
+    "reference": {"common", "compare", "renderer"},
+    # The harness still holds rendered cases (suite.hpp's Case names a Scene and a Technique);
+    # issue 28's source interface moves them to the AO layer and removes "renderer" here.
+    "harness": {"common", "compare", "renderer"},
+    "cli": {"common", "compare", "renderer", "reference", "harness"},
+}
+INCLUDE = re.compile(r'#include "([\w/]+)\.[ch]pp"')
+
+
+def includes(root):
+    """{unit: {included unit: (file, line)}}, a unit being 'folder/.../stem'."""
+    graph = {}
+    for layer in LAYERS:
+        for f in sorted((root / layer).rglob("*.[ch]pp")):
+            unit = str(f.relative_to(root).with_suffix(""))
+            edges = graph.setdefault(unit, {})
+            for n, line in enumerate(f.read_text(errors="replace").splitlines(), 1):
+                m = INCLUDE.match(line)
+                if m and m.group(1) != unit:
+                    edges.setdefault(m.group(1), (f.relative_to(root), n))
+    return graph
+
+
+def cycles(graph):
+    """Strongly connected components of more than one unit (Tarjan)."""
+    index, low, stack, on, out = {}, {}, [], set(), []
+
+    def visit(v):
+        index[v] = low[v] = len(index)
+        stack.append(v), on.add(v)
+        for w in graph.get(v, {}):
+            if w not in graph:
+                continue
+            if w not in index:
+                visit(w)
+                low[v] = min(low[v], low[w])
+            elif w in on:
+                low[v] = min(low[v], index[w])
+        if low[v] == index[v]:
+            scc = []
+            while True:
+                w = stack.pop()
+                on.discard(w)
+                scc.append(w)
+                if w == v:
+                    break
+            if len(scc) > 1:
+                out.append(sorted(scc))
+
+    sys.setrecursionlimit(10000)
+    for v in sorted(graph):
+        if v not in index:
+            visit(v)
+    return out
 
 
 def main() -> int:
     root = pathlib.Path(sys.argv[1])
+    graph = includes(root)
     bad = []
-    for layer in LAYERS:
-        for f in sorted((root / layer).rglob("*.[ch]pp")):
-            for n, line in enumerate(f.read_text(errors="replace").splitlines(), 1):
-                m = re.match(r'#include "(\w+)/', line)
-                if m and m.group(1) in LAYERS and LAYERS.index(m.group(1)) > LAYERS.index(layer):
-                    bad.append(f"{f.relative_to(root)}:{n}: {layer}/ includes {m.group(1)}/")
+    for unit, edges in sorted(graph.items()):
+        layer = unit.split("/")[0]
+        for target, (f, n) in edges.items():
+            top = target.split("/")[0]
+            if top in LAYERS and top != layer and top not in LAYERS[layer]:
+                bad.append(f"{f}:{n}: {layer}/ includes {top}/")
+    for scc in cycles(graph):
+        links = [f"{graph[a][b][0]}:{graph[a][b][1]}: {a} -> {b}"
+                 for a in scc for b in graph[a] if b in scc]
+        bad.append("include cycle between " + ", ".join(scc) + "\n    " + "\n    ".join(links))
     for b in bad:
         print(b)
-    print(f"{len(bad)} upward includes")
+    print(f"{len(bad)} wrong-way includes")
     return 1 if bad else 0
 
 

@@ -1,0 +1,27 @@
+// A triangle mesh as every scene source produces it (built-in builders, mesh files, scene
+// files) and the G-buffer pass draws it.
+#pragma once
+
+#include <glm/glm.hpp>
+#include <vector>
+
+namespace aosuite::renderer {
+
+struct Mesh {
+  std::vector<glm::vec3> positions;
+  std::vector<glm::vec3> normals;  // per vertex; computed when a loader has none
+  std::vector<glm::uvec3> triangles;
+  glm::vec3 colour{0.8f};
+  // A ground plane: not part of "the object" for object-space techniques (PMI), whose
+  // viewpoint sphere a 40 m plane would swallow.
+  bool ground = false;
+};
+
+// Area-weighted vertex normals; zero-area triangles contribute nothing and a vertex with no
+// usable triangle gets +y, so no NaN ever reaches the G-buffer.
+void compute_normals(Mesh& mesh);
+
+// Appends `part`'s vertices and triangles to `into` (its colour is not changed).
+void append_mesh(Mesh& into, const Mesh& part);
+
+}  // namespace aosuite::renderer
