@@ -124,6 +124,7 @@ json to_json(const CaseResult& c) {
           {"ao_effect_nothing", c.ao_effect_nothing},
           {"input_hash", c.input_hash},
           {"judge_hash", c.judge_hash},
+          {"image_hashes", c.image_hashes},
           {"reused", c.reused},
           {"seconds", c.seconds},
           {"bless_command", printable(c.bless_command)}};
@@ -178,6 +179,8 @@ CaseResult case_from_json(const json& j) {
   for (const json& t2 : j.at("times")) c.times.push_back({t2.at("pass"), t2.at("gpu_ms")});
   c.ao_effect_less = j.at("ao_effect_less"), c.ao_effect_nothing = j.at("ao_effect_nothing");
   c.input_hash = j.at("input_hash"), c.judge_hash = j.at("judge_hash");
+  // Absent in older results: then nothing is reused, which only costs a render.
+  c.image_hashes = j.value("image_hashes", std::map<std::string, std::string>{});
   c.reused = j.at("reused"), c.seconds = j.at("seconds");
   c.bless_command = j.at("bless_command");
   return c;

@@ -37,6 +37,10 @@ struct CaseResult {
   // (the thesis's Tables 11-14): how much of the picture AO changes.
   double ao_effect_less = 0, ao_effect_nothing = 0;
   std::string input_hash, judge_hash;  // what the render and the verdict depended on
+  // The content hash of each image kept in the case's report folder, as this run made or found
+  // it: a later run reuses those files only while they still hold exactly these bytes (a bless,
+  // or a run killed before its cache was saved, may have replaced them since).
+  std::map<std::string, std::string> image_hashes;
   bool reused = false;                 // inputs and goldens unchanged: nothing re-rendered
   double seconds = 0;
   std::string bless_command;   // set for cases that are not passing

@@ -7,9 +7,11 @@
 #include <cstdlib>
 #include <fstream>
 #include <mutex>
+#include <span>
 #include <stdexcept>
 #include <thread>
 
+#include "common/content_hash.hpp"
 #include "compare/exr_file.hpp"
 #include "compare/image_io.hpp"
 #include "compare/opencv.hpp"
@@ -272,14 +274,25 @@ void produce_images(const Case& c, const fs::path& case_dir, CaseResult& r, Rend
   }
 }
 
+std::string bytes_hash(const std::vector<unsigned char>& bytes) {
+  return ContentHash().add(std::span<const unsigned char>(bytes)).hex();
+}
+
+// The previous run's images, if the report folder still holds exactly the bytes it recorded
+// (regular files, not links).
 bool reuse_render(const Case& c, const CaseResult& prev, const fs::path& case_dir, CaseResult& r,
                   Rendered& out) {
   for (const std::string& name : kept_images(c)) {
-    if (!fs::is_regular_file(case_dir / (name + ext_of(c, name)))) return false;
+    const fs::path file = case_dir / (name + ext_of(c, name));
+    std::error_code ec;
+    if (!fs::is_regular_file(fs::symlink_status(file, ec)) || !prev.image_hashes.count(name))
+      return false;
   }
   for (const std::string& name : kept_images(c)) {
     out.png[name] = read_file(case_dir / (name + ext_of(c, name)));
+    if (bytes_hash(out.png[name]) != prev.image_hashes.at(name)) return false;
   }
+  r.image_hashes = prev.image_hashes;
   r.times = prev.times;
   r.ao_effect_less = prev.ao_effect_less, r.ao_effect_nothing = prev.ao_effect_nothing;
   r.exit_status = prev.exit_status, r.command_stderr = prev.command_stderr;
@@ -348,11 +361,15 @@ std::optional<CaseResult> prepare(Gl& gl, const std::string& gl_description, con
   if (prev && prev->input_hash == r.input_hash && reuse_render(c, *prev, case_dir, r, images)) {
     return prev;
   }
+  images = {};
   if (c.source) {
     produce_images(c, case_dir, r, images);
   } else {
     render_case(gl.get(), c, case_dir, r, images);
   }
+  r.image_hashes.clear();
+  for (const std::string& name : kept_images(c))
+    r.image_hashes[name] = bytes_hash(images.png.at(name));
   return std::nullopt;
 }
 

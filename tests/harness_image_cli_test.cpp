@@ -251,6 +251,33 @@ max_mismatch_percent = 10
   EXPECT_NE(r.out.find("ERROR disk"), std::string::npos) << r.out;
 }
 
+// A report folder is one run's truth: `bless` (and a run killed before it saved cache.json)
+// replaces a case's images there without touching the cache, and a later check whose input
+// hash matches the cache must not take those images for its own. Reproduces issue 29's false
+// PASS: A checked, B blessed, A checked again.
+TEST_F(ImageCases, ImagesReplacedSinceTheCacheWasWrittenAreNotReused) {
+  fs::create_directories(dir_ / "s" / "out");
+  const fs::path shot = dir_ / "s" / "out" / "a.png";
+  std::ofstream(dir_ / "s" / "f.toml") << "[[case]]\nname = \"disk\"\nfiles = [\"out/a.png\"]\n";
+  const auto show = [&](const char* png) {
+    fs::copy_file(dir_ / "s" / png, shot, fs::copy_options::overwrite_existing);
+  };
+  show("red.png");
+  ASSERT_EQ(aosuite("bless s/f.toml").rc, 0);
+  ASSERT_EQ(aosuite("check s/f.toml").rc, 0);
+  show("green.png");
+  ASSERT_EQ(aosuite("bless s/f.toml").rc, 0);  // goldens: green; the report's image: green
+  show("red.png");
+  test::Outcome r = aosuite("check s/f.toml");
+  EXPECT_EQ(r.rc, 1) << r.out << r.err;
+  EXPECT_NE(r.out.find("FAIL  disk"), std::string::npos) << r.out;
+  // The same after the report's image is swapped by hand.
+  fs::copy_file(dir_ / "s" / "green.png", dir_ / "reports" / "f" / "cases" / "disk" / "a.png",
+                fs::copy_options::overwrite_existing);
+  r = aosuite("check s/f.toml");
+  EXPECT_EQ(r.rc, 1) << r.out << r.err;
+}
+
 // Folder mode, as reg-cli: two folders of PNGs paired by relative path; changed, new and
 // deleted images; bless makes the expected folder match.
 TEST_F(ImageCases, FolderModeReportsChangedNewAndDeletedAndBlessAcceptsThem) {
