@@ -723,7 +723,20 @@ RunResults bless(const Suite& suite, const BlessOptions& b) {
             for (const std::string& image : c.images) {
               const fs::path f = b.run.report_dir / "cases" / c.id / (image + ext_of(c, image));
               try {
+                // What was reviewed is what is approved: the file must be the one the report's
+                // results.json recorded (a later or killed run may have replaced it), and a
+                // file, not a link to anything outside the report.
+                std::error_code ec;
+                if (!fs::is_regular_file(fs::symlink_status(f, ec)))
+                  throw FileError(f.string() + ": not a regular file");
                 images.png[image] = read_file(f);
+                const auto recorded = it->second.image_hashes.find(image);
+                if (recorded == it->second.image_hashes.end() ||
+                    recorded->second != bytes_hash(images.png[image])) {
+                  throw FileError(
+                      f.string() +
+                      ": not the image the report judged (replaced since; check again)");
+                }
                 if (ext_of(c, image) == ".png") check_png(images.png[image], f.string());
               } catch (const std::exception& e) {
                 throw std::runtime_error(std::string("the report's image is unusable: ") +

@@ -276,6 +276,22 @@ TEST_F(ImageCases, ImagesReplacedSinceTheCacheWasWrittenAreNotReused) {
                 fs::copy_options::overwrite_existing);
   r = aosuite("check s/f.toml");
   EXPECT_EQ(r.rc, 1) << r.out << r.err;
+
+  // Approving from the report takes only the image the report judged: one replaced since (by
+  // hand, a later or a killed run) or a link is refused, and the golden stays.
+  const fs::path reported = dir_ / "reports" / "f" / "cases" / "disk" / "a.png";
+  const auto golden = read_file(dir_ / "goldens" / "f" / "disk" / "a.png");
+  fs::copy_file(dir_ / "s" / "green.png", reported, fs::copy_options::overwrite_existing);
+  r = aosuite("bless s/f.toml --failed --report reports/f");
+  EXPECT_EQ(r.rc, 2) << r.out << r.err;
+  EXPECT_NE((r.out + r.err).find("not the image the report judged"), std::string::npos)
+      << r.out << r.err;
+  fs::remove(reported);
+  fs::create_symlink(dir_ / "s" / "red.png", reported);
+  r = aosuite("bless s/f.toml --failed --report reports/f");
+  EXPECT_EQ(r.rc, 2) << r.out << r.err;
+  EXPECT_NE((r.out + r.err).find("not a regular file"), std::string::npos) << r.out << r.err;
+  EXPECT_EQ(read_file(dir_ / "goldens" / "f" / "disk" / "a.png"), golden);
 }
 
 // Folder mode, as reg-cli: two folders of PNGs paired by relative path; changed, new and
