@@ -2,6 +2,7 @@
 #include <fmt/format.h>
 
 #include <array>
+#include <csignal>
 #include <cstring>
 #include <exception>
 #include <string>
@@ -62,6 +63,9 @@ std::string command_list() {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // A write over the file size limit (ulimit -f) fails with EFBIG and a message naming the file,
+  // instead of the signal ending the process without a word.
+  std::signal(SIGXFSZ, SIG_IGN);
   if (argc > 1 && is_gl_command(argv[1])) return run_gl_command(argc, argv);
   if (argc > 1 && argv[1][0] != '-' && std::strcmp(argv[1], "compare") != 0) {
     return aosuite::cli::usage_error(

@@ -1,7 +1,9 @@
 #include "harness/goldens.hpp"
 
+#include <fcntl.h>
 #include <fmt/format.h>
 #include <signal.h>
+#include <stdio.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -173,10 +175,129 @@ void replace_goldens(const std::vector<GoldenWrite>& files) {
   }
 }
 
+namespace {
+
+// The staged folder's tree: `from`'s sub-folders made again and its files hard-linked (copied
+// where the file system cannot link), our temporaries left out.
+void stage_copy(const fs::path& from, const fs::path& to) {
+  std::error_code ec;
+  fs::directory_iterator it(from, ec);
+  if (ec == std::errc::no_such_file_or_directory) return;
+  if (ec)
+    throw std::runtime_error(from.string() + ": cannot read the golden folder: " + ec.message());
+  for (; it != fs::directory_iterator(); it.increment(ec)) {
+    const fs::path p = it->path(), target = to / p.filename();
+    const std::string name = p.filename().string();
+    if (temporary_owner(name) > 0) continue;
+    const fs::file_status st = it->symlink_status(ec);
+    if (fs::is_directory(st)) {
+      fs::create_directory(target);
+      stage_copy(p, target);
+    } else if (fs::is_regular_file(st)) {
+      if (::link(p.c_str(), target.c_str()) != 0) fs::copy_file(p, target);
+    }
+  }
+  if (ec)
+    throw std::runtime_error(from.string() + ": cannot read the golden folder: " + ec.message());
+}
+
+// A new file at `path` (replacing a link to the old one: the old golden is never written to).
+void write_new(const fs::path& path, std::span<const unsigned char> bytes) {
+  fs::create_directories(path.parent_path());
+  if (::unlink(path.c_str()) != 0 && errno != ENOENT) fail_errno(path, "cannot replace");
+  const fs::path tmp = write_temporary(path, bytes);
+  if (::rename(tmp.c_str(), path.c_str()) != 0) {
+    const int saved = errno;
+    ::unlink(tmp.c_str());
+    errno = saved;
+    fail_errno(path, "cannot write");
+  }
+}
+
+void sync_folder(const fs::path& dir) {
+  const int fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY);
+  if (fd >= 0) ::fsync(fd), ::close(fd);
+}
+
+}  // namespace
+
+void replace_case_goldens(const fs::path& case_dir, const std::vector<GoldenWrite>& files) {
+  const fs::path parent = case_dir.parent_path();
+  std::error_code ec;
+  const fs::file_status st = fs::symlink_status(case_dir, ec);
+  if (!ec && fs::exists(st) && !fs::is_directory(st)) {
+    throw std::runtime_error(case_dir.string() + ": is not a folder; nothing was replaced");
+  }
+  const bool exists = fs::exists(st);
+  fs::create_directories(parent, ec);
+  if (ec) {
+    throw std::runtime_error(
+        fmt::format("{}: cannot create the folder: {}", parent.string(), ec.message()));
+  }
+  std::string staged = (parent / fmt::format(".{}.bless-{}-XXXXXX", case_dir.filename().string(),
+                                             static_cast<long>(::getpid())))
+                           .string();
+  if (!::mkdtemp(staged.data())) fail_errno(case_dir, "cannot create a folder beside it");
+  try {
+    for (const auto& [path, bytes] : files) {
+      const fs::path rel = path.lexically_relative(case_dir);
+      if (rel.empty() || *rel.begin() == "..") {
+        throw std::runtime_error(path.string() + ": not inside " + case_dir.string());
+      }
+      const fs::file_status f = fs::symlink_status(path, ec);
+      if (!ec && fs::exists(f) && !fs::is_regular_file(f)) {
+        throw std::runtime_error(path.string() + ": is not a file");
+      }
+    }
+    stage_copy(case_dir, staged);
+    for (const auto& [path, bytes] : files) {
+      write_new(fs::path(staged) / path.lexically_relative(case_dir), bytes);
+      sync_folder((fs::path(staged) / path.lexically_relative(case_dir)).parent_path());
+    }
+    sync_folder(staged);
+    // The one step that changes what readers see. Without RENAME_EXCHANGE (a file system that
+    // lacks it) the folder is moved aside first: a reader may then briefly find no goldens
+    // (NEW, a failure), never a mix.
+    if (exists &&
+        ::renameat2(AT_FDCWD, staged.c_str(), AT_FDCWD, case_dir.c_str(), RENAME_EXCHANGE) != 0) {
+      if (errno != EINVAL && errno != ENOSYS) fail_errno(case_dir, "cannot replace");
+      const std::string aside = fmt::format("{}-old", staged);
+      if (::rename(case_dir.c_str(), aside.c_str()) != 0) fail_errno(case_dir, "cannot move aside");
+      if (::rename(staged.c_str(), case_dir.c_str()) != 0) {
+        const int saved = errno;
+        ::rename(aside.c_str(), case_dir.c_str());
+        errno = saved;
+        fail_errno(case_dir, "cannot replace");
+      }
+      staged = aside;
+    } else if (!exists && ::renameat2(AT_FDCWD, staged.c_str(), AT_FDCWD, case_dir.c_str(),
+                                      RENAME_NOREPLACE) != 0) {
+      fail_errno(case_dir, "cannot create");
+    }
+  } catch (const std::exception& e) {
+    fs::remove_all(staged, ec);
+    throw std::runtime_error(std::string(e.what()) + "; nothing was replaced");
+  }
+  sync_folder(parent);
+  if (exists) fs::remove_all(staged, ec);  // the old case, now under the staged name
+}
+
 int remove_stale_temporaries(const fs::path& case_dir) {
   int removed = 0;
-  std::vector<fs::path> dirs{case_dir};
   std::error_code ec;
+  // Staged or replaced copies of this case beside it (.<case>.bless-<pid>-XXXXXX[-old]).
+  const std::string prefix = fmt::format(".{}.bless-", case_dir.filename().string());
+  for (const fs::directory_entry& e : fs::directory_iterator(case_dir.parent_path(), ec)) {
+    std::string name = e.path().filename().string();
+    if (!name.starts_with(prefix) || !e.is_directory(ec) || e.is_symlink(ec)) continue;
+    if (name.ends_with("-old")) name.resize(name.size() - 4);
+    const long pid = temporary_owner(name);
+    if (pid > 0 && ::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH &&
+        fs::remove_all(e.path(), ec) > 0) {
+      ++removed;
+    }
+  }
+  std::vector<fs::path> dirs{case_dir};
   for (const fs::directory_entry& e : fs::directory_iterator(case_dir, ec)) {
     if (e.is_directory(ec) && !e.is_symlink(ec)) dirs.push_back(e.path());
   }

@@ -43,8 +43,20 @@ std::filesystem::path golden_path(const std::filesystem::path& case_dir, std::st
 using GoldenWrite = std::pair<std::filesystem::path, std::span<const unsigned char>>;
 void replace_goldens(const std::vector<GoldenWrite>& files);
 
-// Removes temporaries a killed bless left in `case_dir` and its platform folders: ours whose
-// process is gone, and the older form .<name>.tmp-XXXXXX once a minute old. Returns how many.
+// Replaces (or creates) files inside one case's goldens folder `case_dir` (its goldens, variants,
+// region maps, platform sub-folders) as one change: a copy of the folder is staged beside it as
+// .<case>.bless-<pid>-XXXXXX (unchanged files hard-linked, new ones written and synced), then
+// exchanged with the folder in one renameat2(RENAME_EXCHANGE), and the old copy removed. A
+// reader, a killed bless or a second bless racing this one sees the case all old or all new,
+// never a mix of files. On failure before the exchange the staged copy is removed, nothing has
+// changed, and std::runtime_error names the file and the reason. Every path in `files` must be
+// inside case_dir.
+void replace_case_goldens(const std::filesystem::path& case_dir,
+                          const std::vector<GoldenWrite>& files);
+
+// Removes temporaries a killed bless left in `case_dir` and its platform folders, and the
+// staged or replaced copies of the case beside it: ours whose process is gone, and the older
+// form .<name>.tmp-XXXXXX once a minute old. Returns how many.
 int remove_stale_temporaries(const std::filesystem::path& case_dir);
 
 }  // namespace aosuite::harness

@@ -634,7 +634,12 @@ void write_case_goldens(const Suite& suite, const Case& c, const std::string& pl
   }
   remove_stale_temporaries(dir);
   try {
-    replace_goldens(writes);
+    // Folder mode's one expected file is replaced by one rename; a suite case's folder whole.
+    if (c.source && !c.source->golden_file.empty()) {
+      replace_goldens(writes);
+    } else {
+      replace_case_goldens(dir, writes);
+    }
   } catch (const std::exception& e) {
     throw std::runtime_error(std::string("goldens not written: ") + e.what());
   }

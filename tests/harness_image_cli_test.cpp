@@ -1,6 +1,7 @@
 // Image cases (images a command writes, or files on disk), folder mode, approving from the
 // report, --json and --retries, end to end through the CLI. None of these render a scene, so
 // they need no OpenGL.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -292,6 +293,67 @@ TEST_F(ImageCases, ImagesReplacedSinceTheCacheWasWrittenAreNotReused) {
   EXPECT_EQ(r.rc, 2) << r.out << r.err;
   EXPECT_NE((r.out + r.err).find("not a regular file"), std::string::npos) << r.out << r.err;
   EXPECT_EQ(read_file(dir_ / "goldens" / "f" / "disk" / "a.png"), golden);
+}
+
+// A case's goldens change all or nothing. Two sets of two images, a small one and a large one;
+// bless of the other set fails while writing the large one (ulimit -f), or is killed at
+// staggered moments: each time, the case's goldens are all of one set.
+TEST_F(ImageCases, ACasesGoldensAreReplacedAllOrNothing) {
+  fs::create_directories(dir_ / "s" / "shots");
+  std::ofstream(dir_ / "s" / "two.toml")
+      << "[[case]]\nname = \"two\"\nfiles = [\"shots/a.png\", \"shots/b.png\"]\n";
+  std::map<std::string, std::vector<unsigned char>> set[2];
+  for (int k = 0; k < 2; ++k) {
+    cv::Mat noise(512, 512, CV_8UC4);
+    cv::randu(noise, cv::Scalar::all(0), cv::Scalar::all(256));  // incompressible: ~1 MB
+    for (const auto& [name, img] :
+         {std::pair{"a", flat(8, 6, {k ? 0.0 : 255.0, k ? 255.0 : 0.0, 0, 255})},
+          std::pair{"b", noise}}) {
+      const fs::path f = dir_ / "s" / fmt::format("{}{}.png", name, k);
+      write_png_rgba8(f, img);
+      set[k][name] = read_file(f);
+    }
+  }
+  const auto show = [&](int k) {
+    for (const char* name : {"a", "b"}) {
+      fs::copy_file(dir_ / "s" / fmt::format("{}{}.png", name, k),
+                    dir_ / "s" / "shots" / fmt::format("{}.png", name),
+                    fs::copy_options::overwrite_existing);
+    }
+  };
+  const fs::path goldens = dir_ / "goldens" / "two" / "two";
+  // Which set the goldens are: -1 for a mix (or anything else).
+  const auto which = [&] {
+    for (int k = 0; k < 2; ++k) {
+      if (read_file(goldens / "a.png") == set[k]["a"] &&
+          read_file(goldens / "b.png") == set[k]["b"])
+        return k;
+    }
+    return -1;
+  };
+  show(0);
+  ASSERT_EQ(aosuite("bless s/two.toml").rc, 0);
+  ASSERT_EQ(which(), 0);
+  show(1);
+  // a.png (100 bytes) fits under 64 KiB, b.png does not: the bless fails after writing a.png.
+  test::Outcome r = aosuite("bless s/two.toml", "ulimit -f 128;");
+  EXPECT_EQ(r.rc, 2) << r.out << r.err;
+  EXPECT_NE(r.out.find("File too large"), std::string::npos) << r.out << r.err;
+  EXPECT_EQ(which(), 0);
+  for (int i = 0; i < 12; ++i) {
+    show(1 - which());
+    test::run_shell("cd " + dir_.path().string() + " && (" + AOSUITE_BIN +
+                        fmt::format(" bless s/two.toml >/dev/null 2>&1 & p=$!; sleep {:.3f}; "
+                                    "kill -9 $p; wait $p)",
+                                    i * 0.008),
+                    dir_.path());
+    ASSERT_NE(which(), -1) << "a mix of both sets after a kill at step " << i;
+  }
+  // What killed blesses left beside the case is removed by the next bless.
+  show(1 - which());
+  ASSERT_EQ(aosuite("bless s/two.toml").rc, 0);
+  for (const auto& e : fs::directory_iterator(goldens.parent_path()))
+    EXPECT_EQ(e.path().filename(), "two") << "left behind: " << e.path();
 }
 
 // Folder mode, as reg-cli: two folders of PNGs paired by relative path; changed, new and
