@@ -14,9 +14,14 @@ struct CommandOutcome {
 };
 
 // Runs `argv` (argv[0] looked up in PATH when it has no '/') in `cwd` with stdin from
-// /dev/null, stdout and stderr into the given files, and `env` added to this process's
-// environment. The command runs in its own process group; after `timeout_seconds` the whole
-// group is killed. Throws std::runtime_error when it cannot be started (naming argv[0]).
+// /dev/null, stdout and stderr into the given files (of which the last 64 KiB are kept, after a
+// line giving the full size), and `env` added to this process's environment.
+// A command never outlives it: the command runs under a reaper, a forked copy of this process
+// that is the child subreaper of the command's whole tree. When the command exits, after
+// `timeout_seconds`, or when this process dies or is signalled (Ctrl-C, TERM, HUP reach the
+// reaper through the process group or PR_SET_PDEATHSIG), the reaper kills every descendant,
+// those that called setsid or double-forked included, and reaps them. Throws
+// std::runtime_error when it cannot be started (naming argv[0]).
 CommandOutcome run_command(const std::vector<std::string>& argv, const std::filesystem::path& cwd,
                            const std::filesystem::path& stdout_file,
                            const std::filesystem::path& stderr_file, double timeout_seconds,

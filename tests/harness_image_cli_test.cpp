@@ -3,12 +3,14 @@
 // they need no OpenGL.
 #include <fmt/format.h>
 #include <gtest/gtest.h>
+#include <signal.h>
 
 #include <chrono>
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <set>
+#include <thread>
 
 #include "compare/opencv.hpp"
 #include "png_fixture.hpp"
@@ -188,6 +190,85 @@ outputs = ["x.png"]
   EXPECT_EQ(r.rc, 2) << r.out << r.err;
   EXPECT_NE(r.out.find("command timed out after 0.5 s and was killed"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("the command did not write x.png"), std::string::npos) << r.out;
+}
+
+// A command never outlives aosuite: what it leaves running (a `setsid` daemon, a double-forked
+// orphan) is killed when it exits, when it times out, and when aosuite is stopped by TERM or by
+// a terminal's Ctrl-C (SIGINT to aosuite's process group).
+TEST_F(ImageCases, NoProcessOfACommandOutlivesIt) {
+  std::ofstream(dir_ / "s" / "tree.sh") << R"SH(#!/bin/sh
+here="$1"
+setsid sh -c 'echo $$ > "$1/daemon.pid"; exec sleep 300' sh "$here" &
+( sleep 300 & echo $! > "$here/orphan.pid" )
+while [ ! -s "$here/daemon.pid" ]; do sleep 0.01; done
+echo $$ > "$here/main.pid"
+if [ -e "$here/hang" ]; then sleep 300; fi
+cp "$here/red.png" "$2/x.png"
+)SH";
+  std::ofstream(dir_ / "s" / "tree.toml") << R"(
+[[case]]
+name = "tree"
+command = ["sh", "{suite_dir}/tree.sh", "{suite_dir}", "{out}"]
+outputs = ["x.png"]
+timeout = 2
+)";
+  const auto pids = [&] {
+    std::vector<pid_t> out;
+    for (const char* f : {"main.pid", "daemon.pid", "orphan.pid"})
+      out.push_back(static_cast<pid_t>(std::atol(read_text(dir_ / "s" / f).c_str())));
+    return out;
+  };
+  // Gone: no such process (a zombie would still answer kill(pid, 0)).
+  const auto all_gone = [&] {
+    for (int wait = 0; wait < 100; ++wait) {
+      bool alive = false;
+      for (pid_t p : pids()) alive = alive || (p > 1 && ::kill(p, 0) == 0);
+      if (!alive) return true;
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
+    return false;
+  };
+  const auto fresh = [&] {
+    for (const char* f : {"main.pid", "daemon.pid", "orphan.pid"}) fs::remove(dir_ / "s" / f);
+  };
+  test::Outcome r = aosuite("check s/tree.toml --no-reuse");
+  EXPECT_EQ(r.rc, 1) << r.out << r.err;  // NEW: the command exited 0 and wrote its image
+  EXPECT_NE(pids()[1], 0);
+  EXPECT_TRUE(all_gone()) << "exit left processes behind";
+  fresh();
+  std::ofstream(dir_ / "s" / "hang") << "";
+  r = aosuite("check s/tree.toml --no-reuse");
+  EXPECT_EQ(r.rc, 2) << r.out << r.err;
+  EXPECT_NE(r.out.find("timed out"), std::string::npos) << r.out;
+  EXPECT_TRUE(all_gone()) << "the timeout left processes behind";
+  for (const char* how : {"kill -TERM $p", "kill -INT -- -$p"}) {
+    fresh();
+    // aosuite in a process group of its own, as a terminal's foreground job is.
+    test::run_shell("cd " + dir_.path().string() + " && (setsid " + AOSUITE_BIN +
+                        " check s/tree.toml --no-reuse >/dev/null 2>&1 & p=$!; "
+                        "while [ ! -s s/main.pid ]; do sleep 0.02; done; " +
+                        how + "; wait $p)",
+                    dir_.path());
+    EXPECT_NE(pids()[1], 0) << how;
+    EXPECT_TRUE(all_gone()) << how << " left processes behind";
+  }
+}
+
+// A noisy command's output is kept as its last 64 KiB, after a line giving its full size.
+TEST_F(ImageCases, ACommandsOutputIsKeptAsItsLast64KiB) {
+  std::ofstream(dir_ / "s" / "noisy.toml") << R"(
+[[case]]
+name = "noisy"
+command = ["sh", "-c", "seq 1 100000 >&2; seq 1 100000; cp {suite_dir}/red.png {out}/x.png"]
+outputs = ["x.png"]
+)";
+  ASSERT_EQ(aosuite("check s/noisy.toml").rc, 1);
+  for (const char* f : {"stderr.txt", "stdout.txt"}) {
+    const std::string kept = read_text(dir_ / "reports" / "noisy" / "cases" / "noisy" / f);
+    EXPECT_LT(kept.size(), 65 * 1024u) << f;
+    EXPECT_TRUE(kept.starts_with("[aosuite: 588895 bytes written; the last 65536 kept]\n")) << f;
+    EXPECT_TRUE(kept.ends_with("\n99999\n100000\n")) << f;
+  }
 }
 
 // Case fields go into the argv as they are; inside `sh -c` they are shell-quoted, so a field
