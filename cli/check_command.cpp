@@ -7,6 +7,7 @@
 #include <set>
 
 #include "cli/commands.hpp"
+#include "common/folder_lock.hpp"
 #include "compare/image_io.hpp"
 #include "harness/escape.hpp"
 #include "harness/html_report.hpp"
@@ -26,6 +27,7 @@ struct HarnessArgs {
   std::vector<std::string> gates;
   bool diff_all = false, no_reuse = false, platform = false, list = false, json = false;
   bool force = false, from_report = false, failed = false, single_file = false;
+  bool wait = false;  // for a folder another run holds, instead of failing at once
 };
 
 void add_selection_options(CLI::App* cmd, HarnessArgs& a) {
@@ -54,6 +56,9 @@ void add_selection_options(CLI::App* cmd, HarnessArgs& a) {
       ->capture_default_str();
   cmd->add_option("--report", a.report, "report folder (default: reports/<suite name>)");
   cmd->add_flag("--no-reuse", a.no_reuse, "re-render and re-judge even unchanged cases");
+  cmd->add_flag("--wait", a.wait,
+                "wait for another aosuite that is writing the same report or goldens folder "
+                "(default: fail at once, naming it)");
 }
 
 hs::Suite load(const HarnessArgs& a) {
@@ -219,6 +224,7 @@ int run_check(const HarnessArgs& a) {
     o.progress = print_progress;
   }
   acknowledge_sharding();
+  const FolderLock report(o.report_dir, a.wait);  // held until the report is written
   const hs::RunResults run = hs::check(suite, o);
   return finish(run, o.report_dir, a.junit, {.json = a.json, .single_file = a.single_file});
 }
@@ -256,6 +262,8 @@ int run_bless(const HarnessArgs& given) {
                r.id, hs::printable(r.message));
     std::fflush(stdout);
   };
+  // The report folder (bless renders into it, or reads what it judged) and then the goldens.
+  const FolderLock report(b.run.report_dir, a.wait), goldens(suite.goldens, a.wait);
   const hs::RunResults run = hs::bless(suite, b);
   if (run.cases.empty()) {
     fmt::print("nothing to accept: no case failed or is new in {}\n",
@@ -316,7 +324,7 @@ int shard_count(const std::vector<hs::RunResults>& parts, const std::vector<std:
 // and before anything is written: one suite, no case twice, every shard of the run there
 // unless `partial` (then the report says which are missing).
 int run_merge(const std::string& out, const std::vector<std::string>& shards,
-              const std::string& junit, bool partial) {
+              const std::string& junit, bool partial, bool wait) {
   std::vector<hs::RunResults> parts;
   for (const std::string& dir : shards) {
     parts.push_back(hs::read_results(dir));
@@ -346,7 +354,7 @@ int run_merge(const std::string& out, const std::vector<std::string>& shards,
         given.size() + 1 < std::size_t(count) ? "s" : "", missing,
         given.size() + 1 < std::size_t(count) ? "are" : "is"));
   }
-  fs::create_directories(out);
+  const FolderLock lock(out, wait);
   hs::RunResults merged = parts.front();
   merged.cases.clear();
   merged.shard = missing.empty() ? "" : "partial, missing " + missing;
@@ -426,11 +434,12 @@ void add_report_command(CLI::App& app, int& rc) {
   merge->add_option("--out", *out, "merged report folder")->required();
   merge->add_option("--junit", *junit, "also write JUnit XML here");
   merge->add_option("shards", *shards, "report folders of the shards")->required();
-  auto partial = std::make_shared<bool>(false);
+  auto partial = std::make_shared<bool>(false), wait = std::make_shared<bool>(false);
   merge->add_flag("--partial", *partial,
                   "merge even when shards of the run are missing; the report says which");
-  guarded(merge, rc, "report merge", [out, shards, junit, partial] {
-    return escaped_errors([&] { return run_merge(*out, *shards, *junit, *partial); });
+  merge->add_flag("--wait", *wait, "wait for another aosuite writing --out");
+  guarded(merge, rc, "report merge", [out, shards, junit, partial, wait] {
+    return escaped_errors([&] { return run_merge(*out, *shards, *junit, *partial, *wait); });
   });
 }
 

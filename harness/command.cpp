@@ -8,11 +8,13 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <iterator>
 #include <stdexcept>
 #include <thread>
 
@@ -144,6 +146,15 @@ void kill_tree(pid_t command, int& command_status) {
   for (int s : {SIGCHLD, SIGTERM, SIGINT, SIGHUP, SIGQUIT}) sigaddset(&wanted, s);
   ::sigprocmask(SIG_SETMASK, &wanted, nullptr);
   if (::getppid() != parent) ::_exit(128 + SIGTERM);  // it died before PDEATHSIG was set
+  // Only the command's files stay open here: a folder lock (common/folder_lock.hpp) or any other
+  // descriptor of aosuite's must not outlive aosuite in its reaper.
+  int keep[] = {in, out, err, exec_error};
+  std::sort(std::begin(keep), std::end(keep));
+  unsigned from = 3;
+  for (const int fd : keep) {
+    if (fd >= static_cast<int>(from)) ::syscall(SYS_close_range, from, fd - 1, 0), from = fd + 1;
+  }
+  ::syscall(SYS_close_range, from, ~0U, 0);
   const pid_t command = ::fork();
   if (command == 0) {
     // The command: its own process group (a terminal's Ctrl-C reaches the reaper, which ends

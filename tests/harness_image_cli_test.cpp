@@ -254,6 +254,53 @@ timeout = 2
   }
 }
 
+// One run at a time per report folder and goldens folder: a second one fails at once naming
+// the first (pid, command), or waits with --wait; a killed holder's lock is simply taken over.
+TEST_F(ImageCases, OneRunAtATimeInAReportOrGoldensFolder) {
+  for (const char* s : {"a", "b"}) {
+    std::ofstream(dir_ / "s" / (std::string(s) + ".toml"))
+        << "[[case]]\nname = \"slow\"\ncommand = [\"sh\", \"-c\", \"touch {suite_dir}/started; "
+           "sleep 1; cp {suite_dir}/red.png {out}/x.png\"]\noutputs = [\"x.png\"]\n";
+  }
+  const auto in_background = [&](const std::string& args) {
+    fs::remove(dir_ / "s" / "started");
+    test::run_shell("cd " + dir_.path().string() + " && (" + AOSUITE_BIN + " " + args +
+                        " >bg.out 2>&1 & echo $! >bg.pid) && while [ ! -e s/started ]; do sleep "
+                        "0.01; done",
+                    dir_.path());
+    return static_cast<pid_t>(std::atol(read_text(dir_ / "bg.pid").c_str()));
+  };
+  in_background("check s/a.toml --report R");
+  test::Outcome r = aosuite("check s/b.toml --report R");
+  EXPECT_EQ(r.rc, 2) << r.out << r.err;
+  EXPECT_NE(r.err.find("R: in use by another aosuite (pid "), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("check s/a.toml --report R"), std::string::npos) << r.err;
+  r = aosuite("check s/b.toml --report R --wait");
+  EXPECT_EQ(r.rc, 1) << r.out << r.err;  // NEW, after the first run let go
+  EXPECT_NE(read_text(dir_ / "bg.out").find("NEW   slow"), std::string::npos)
+      << read_text(dir_ / "bg.out");
+  // Two blesses into one goldens folder, each with its own report folder.
+  in_background("bless s/a.toml --goldens G --report R1");
+  r = aosuite("bless s/b.toml --goldens G --report R2");
+  EXPECT_EQ(r.rc, 2) << r.out << r.err;
+  EXPECT_NE(r.err.find("G: in use by another aosuite"), std::string::npos) << r.err;
+  // A holder killed with SIGKILL leaves no lock behind.
+  const pid_t holder = in_background("check s/a.toml --report K");
+  ASSERT_EQ(::kill(holder, SIGKILL), 0);
+  // Dead once it is gone or a zombie (its files, and so its lock, are released by then).
+  for (int i = 0; i < 500 && ::kill(holder, 0) == 0; ++i) {
+    const std::string stat = read_text(fs::path("/proc") / std::to_string(holder) / "stat");
+    if (stat.empty() || stat.find(") Z ") != std::string::npos) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  r = aosuite("check s/a.toml --report K");
+  EXPECT_EQ(r.rc, 1) << r.out << r.err;
+  // A run that stops before writing (nothing selected) leaves no report folder.
+  r = aosuite("check s/a.toml --report empty --filter nothing-matches");
+  EXPECT_EQ(r.rc, 2) << r.out << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "empty"));
+}
+
 // A noisy command's output is kept as its last 64 KiB, after a line giving its full size.
 TEST_F(ImageCases, ACommandsOutputIsKeptAsItsLast64KiB) {
   std::ofstream(dir_ / "s" / "noisy.toml") << R"(

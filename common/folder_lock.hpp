@@ -1,0 +1,37 @@
+// One run at a time in each folder aosuite writes (a report folder, a goldens folder, an
+// --expected folder): an exclusive flock(2) on the folder itself, so no lock file is left in a
+// user's folder. The kernel drops the lock when its holder ends, however it ends, so a killed
+// run never leaves a folder locked: the next run takes it over without asking. Who holds a lock
+// is read from /proc/locks.
+#pragma once
+
+#include <filesystem>
+#include <stdexcept>
+
+namespace aosuite {
+
+// Another process holds the folder: the message names the folder and the holder (its pid, when
+// it started, its command line).
+class FolderBusy : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+class FolderLock {
+ public:
+  // Creates the folder if needed and locks it. When another process holds it: throws FolderBusy
+  // at once, or with `wait` blocks until it is free. Throws FileError when the folder cannot be
+  // made or opened (a file in its place, no permission). A folder made here and still empty
+  // when the lock is released is removed: a run that wrote nothing leaves nothing.
+  FolderLock(const std::filesystem::path& folder, bool wait);
+  ~FolderLock();
+  FolderLock(const FolderLock&) = delete;
+  FolderLock& operator=(const FolderLock&) = delete;
+
+ private:
+  int fd_ = -1;
+  // The folders this lock created: the folder and its ancestors up to made_top_.
+  std::filesystem::path made_, made_top_;
+};
+
+}  // namespace aosuite
