@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <fstream>
+#include <functional>
 
 #include "compare/opencv.hpp"
 #include "harness/case_hash.hpp"
@@ -564,6 +565,52 @@ TEST(CaseHash, EveryParameterChangesTheInputHash) {
       EXPECT_NE(input_hash(changed, "gl"), base) << t.name << " " << spec.key;
     }
   }
+}
+
+// Every field of the scene a render reads changes the input hash: a changed field of view (or
+// any other) must never reuse a stale render (a mutation that left fovy_degrees out of the hash
+// passed every test before this one). Placement transforms are applied when a scene is loaded,
+// so they reach the hash as the positions and normals they move.
+TEST(CaseHash, EverySceneMeshAndViewFieldChangesTheInputHash) {
+  Case c;
+  c.scene = std::make_shared<const renderer::Scene>(renderer::builtin_scene("corner"));
+  c.view = c.scene->views[0].name, c.width = 8, c.height = 8;
+  c.technique = renderer::Technique::kSao, c.params = renderer::default_params(c.technique);
+  const std::string base = input_hash(c, "gl");
+  using Edit = std::function<void(renderer::Scene&)>;
+  const std::vector<std::pair<const char*, Edit>> edits{
+      {"position", [](renderer::Scene& s) { s.meshes[0].positions[0].y += 1e-3f; }},
+      {"normal", [](renderer::Scene& s) { s.meshes[0].normals[0].x += 1e-3f; }},
+      {"triangle",
+       [](renderer::Scene& s) {
+         std::swap(s.meshes[0].triangles[0].x, s.meshes[0].triangles[0].y);
+       }},
+      {"colour", [](renderer::Scene& s) { s.meshes[0].colour.g += 1e-3f; }},
+      {"ground", [](renderer::Scene& s) { s.meshes[0].ground = !s.meshes[0].ground; }},
+      {"mesh added", [](renderer::Scene& s) { s.meshes.push_back(s.meshes[0]); }},
+      {"eye", [](renderer::Scene& s) { s.views[0].eye.z += 1e-3f; }},
+      {"target", [](renderer::Scene& s) { s.views[0].target.x += 1e-3f; }},
+      {"up", [](renderer::Scene& s) { s.views[0].up.x += 1e-3f; }},
+      {"fovy_degrees", [](renderer::Scene& s) { s.views[0].fovy_degrees += 1e-3f; }},
+      {"near", [](renderer::Scene& s) { s.views[0].near *= 1.001f; }},
+  };
+  for (const auto& [field, edit] : edits) {
+    renderer::Scene s = *c.scene;
+    edit(s);
+    Case changed = c;
+    changed.scene = std::make_shared<const renderer::Scene>(std::move(s));
+    EXPECT_NE(input_hash(changed, "gl"), base) << field;
+  }
+  for (const auto& [what, edit] : std::vector<std::pair<const char*, std::function<void(Case&)>>>{
+           {"view", [](Case& k) { k.view = k.scene->views[1].name; }},
+           {"technique", [](Case& k) { k.technique = renderer::Technique::kGtao; }},
+           {"width", [](Case& k) { ++k.width; }},
+           {"height", [](Case& k) { ++k.height; }}}) {
+    Case changed = c;
+    edit(changed);
+    EXPECT_NE(input_hash(changed, "gl"), base) << what;
+  }
+  EXPECT_NE(input_hash(c, "another GL"), base);
 }
 
 TEST(Results, RoundTripThroughJson) {
