@@ -135,7 +135,18 @@ void acknowledge_sharding() {
 struct Output {
   bool json = false;
   bool single_file = false;
+  const std::vector<hs::Skipped>* skipped = nullptr;  // folder mode's files that are no case
 };
+
+// "a.txt (not a PNG or EXR file), loop.png (a symbolic link (not followed)), and 3 more"
+std::string skipped_text(const std::vector<hs::Skipped>& skipped) {
+  std::string out;
+  constexpr std::size_t kShown = 10;
+  for (std::size_t i = 0; i < skipped.size() && i < kShown; ++i)
+    out += fmt::format("{}{} ({})", i ? ", " : "", skipped[i].path, skipped[i].why);
+  if (skipped.size() > kShown) out += fmt::format(", and {} more", skipped.size() - kShown);
+  return hs::printable(out);
+}
 
 int finish(const hs::RunResults& run, const fs::path& report_dir, const std::string& junit,
            const Output& out) {
@@ -164,6 +175,7 @@ int finish(const hs::RunResults& run, const fs::path& report_dir, const std::str
         {"report", hs::printable(report)},
         {"results", hs::printable((report_dir / "results.json").string())},
         {"bless_command", hs::printable(accept_all)},
+        {"skipped", out.skipped ? out.skipped->size() : 0},
         {"approve_failed", to_accept.empty()
                                ? std::string()
                                : hs::printable(run.bless_prefix + " --failed --report " +
@@ -173,6 +185,10 @@ int finish(const hs::RunResults& run, const fs::path& report_dir, const std::str
     return hs::exit_code(n);
   }
   const std::string flaky = n.flaky ? fmt::format(", {} flaky", n.flaky) : "";
+  if (out.skipped && !out.skipped->empty()) {
+    fmt::print("skipped {} file{}: {}\n", out.skipped->size(), out.skipped->size() == 1 ? "" : "s",
+               skipped_text(*out.skipped));
+  }
   if (!run.cases.empty() && run.cases.front().kind == "folder") {
     int deleted = 0;
     for (const hs::CaseResult& c : run.cases) deleted += c.message.starts_with("deleted:");
@@ -202,6 +218,13 @@ int finish(const hs::RunResults& run, const fs::path& report_dir, const std::str
 
 int run_check(const HarnessArgs& a) {
   const hs::Suite suite = load(a);
+  if (!a.actual.empty() && suite.cases.empty()) {
+    throw std::invalid_argument(fmt::format(
+        "no PNG or EXR image under {} or {}{}", hs::printable(a.actual), hs::printable(a.expected),
+        suite.skipped.empty()
+            ? std::string()
+            : fmt::format("; skipped {}: {}", suite.skipped.size(), skipped_text(suite.skipped))));
+  }
   hs::RunOptions o = run_options(suite, a);
   if (a.list) {
     const std::vector<const hs::Case*> cases = hs::select(suite, o.selection);
@@ -226,7 +249,8 @@ int run_check(const HarnessArgs& a) {
   acknowledge_sharding();
   const FolderLock report(o.report_dir, a.wait);  // held until the report is written
   const hs::RunResults run = hs::check(suite, o);
-  return finish(run, o.report_dir, a.junit, {.json = a.json, .single_file = a.single_file});
+  return finish(run, o.report_dir, a.junit,
+                {.json = a.json, .single_file = a.single_file, .skipped = &suite.skipped});
 }
 
 // `bless --failed --report DIR` (or --from-report) with no suite named: the suite the report

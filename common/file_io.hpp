@@ -21,6 +21,11 @@ class FileError : public std::runtime_error {
 // AOSUITE_FIFO_WAIT_MS overrides it.
 inline constexpr int kFifoWaitMs = 5000;
 
+// The most the harness reads of any one file (a case's image, a golden, a report's image, a
+// shard's results.json), as `compare --memory-limit` defaults to: a larger one is refused with
+// its name, never read until memory runs out.
+inline constexpr std::uint64_t kMaxFileBytes = std::uint64_t{1024} << 20;
+
 // The whole file: regular files, pipes, FIFOs and devices alike, read to end-of-file.
 // Throws FileError when it is over max_bytes.
 std::vector<unsigned char> read_file(const std::filesystem::path& path,

@@ -229,7 +229,7 @@ ImageVerdict against(std::string_view image, std::span<const unsigned char> rend
   ImageVerdict v;
   v.image = std::string(image), v.golden = golden_file;
   try {
-    const std::vector<unsigned char> bytes = read_file(golden_file);
+    const std::vector<unsigned char> bytes = read_file(golden_file, kMaxFileBytes);
     if (std::equal(bytes.begin(), bytes.end(), render_bytes.begin(), render_bytes.end())) {
       v.status = Status::kPass, v.identical = true, v.mismatch_text = "0.00";
       return v;

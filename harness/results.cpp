@@ -213,10 +213,13 @@ RunResults run_from_json(const json& j) {
 
 RunResults read_results(const fs::path& dir) {
   const fs::path file = dir / "results.json";
-  std::ifstream in(file);
-  if (!in) throw std::runtime_error(file.string() + ": cannot read (no run results there)");
+  std::error_code ec;
+  if (!fs::is_regular_file(fs::symlink_status(file, ec))) {
+    throw std::runtime_error(file.string() + ": cannot read (no run results there)");
+  }
+  const std::vector<unsigned char> bytes = read_file(file, kMaxFileBytes);
   try {
-    return run_from_json(json::parse(in));
+    return run_from_json(json::parse(bytes));
   } catch (const std::exception& e) {
     throw std::runtime_error(file.string() + ": malformed run results: " + e.what());
   }

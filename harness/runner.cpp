@@ -268,7 +268,7 @@ void produce_images(const Case& c, const fs::path& case_dir, CaseResult& r, Rend
                                                    : "the command did not write " + src.outputs[i] +
                                                          " (" + from[i].string() + ")");
     }
-    out.png[name] = read_file(from[i]);
+    out.png[name] = read_file(from[i], kMaxFileBytes);
     if (src.ext == ".png") check_png(out.png[name], from[i].string());
     keep_in_report(case_dir / (name + src.ext), out.png[name]);
   }
@@ -289,7 +289,7 @@ bool reuse_render(const Case& c, const CaseResult& prev, const fs::path& case_di
       return false;
   }
   for (const std::string& name : kept_images(c)) {
-    out.png[name] = read_file(case_dir / (name + ext_of(c, name)));
+    out.png[name] = read_file(case_dir / (name + ext_of(c, name)), kMaxFileBytes);
     if (bytes_hash(out.png[name]) != prev.image_hashes.at(name)) return false;
   }
   r.image_hashes = prev.image_hashes;
@@ -373,10 +373,24 @@ std::optional<CaseResult> prepare(Gl& gl, const std::string& gl_description, con
   return std::nullopt;
 }
 
+// Folder mode reads, writes and removes under --expected by relative path: never through a link
+// there (a linked file or folder leads out of --expected). Throws naming the link.
+void refuse_links_below(const fs::path& root, const fs::path& file) {
+  fs::path at = root;
+  for (const fs::path& part : file.lexically_relative(root)) {
+    at /= part;
+    std::error_code ec;
+    if (fs::is_symlink(fs::symlink_status(at, ec))) {
+      throw std::runtime_error(at.string() + ": a symbolic link; nothing is written through it");
+    }
+  }
+}
+
 // The goldens accepted for one image: folder mode's one expected file, else the goldens folder.
 std::vector<fs::path> goldens_of(const Suite& suite, const Case& c, const std::string& image,
                                  const std::string& platform) {
   if (c.source && !c.source->golden_file.empty()) {
+    refuse_links_below(suite.goldens, c.source->golden_file);
     std::error_code ec;
     if (fs::exists(fs::symlink_status(c.source->golden_file, ec))) return {c.source->golden_file};
     return {};
@@ -434,7 +448,7 @@ void judge_case(const Suite& suite, const Case& c, const std::string& platform, 
     if (!v.identical && !v.golden.empty() && v.status != Status::kError) {
       // A copy written under a temporary name and renamed: never a truncated golden image in
       // the report, even on a full disk.
-      keep_in_report(case_dir / ("golden_" + name + ext), read_file(v.golden));
+      keep_in_report(case_dir / ("golden_" + name + ext), read_file(v.golden, kMaxFileBytes));
       r.files["golden:" + name] = c.id + "/golden_" + name + ext;
     } else if (v.identical) {
       r.files["golden:" + name] = c.id + "/" + name + ext;
@@ -451,7 +465,8 @@ void judge_deleted(const Case& c, const RunOptions& o, CaseResult& r) {
   const fs::path case_dir = o.report_dir / "cases" / c.id;
   fs::create_directories(case_dir);
   r.files.clear();
-  keep_in_report(case_dir / ("golden_image" + c.source->ext), read_file(c.source->golden_file));
+  keep_in_report(case_dir / ("golden_image" + c.source->ext),
+                 read_file(c.source->golden_file, kMaxFileBytes));
   r.files["golden:image"] = c.id + "/golden_image" + c.source->ext;
   r.status = Status::kFail;
   r.message = "deleted: only in the expected folder";
@@ -636,6 +651,7 @@ void write_case_goldens(const Suite& suite, const Case& c, const std::string& pl
   try {
     // Folder mode's one expected file is replaced by one rename; a suite case's folder whole.
     if (c.source && !c.source->golden_file.empty()) {
+      refuse_links_below(suite.goldens, c.source->golden_file);
       replace_goldens(writes);
     } else {
       replace_case_goldens(dir, writes);
@@ -648,7 +664,8 @@ void write_case_goldens(const Suite& suite, const Case& c, const std::string& pl
 }
 
 // Folder mode: accepting a deleted image removes the expected file.
-void accept_deletion(const Case& c, CaseResult& r) {
+void accept_deletion(const Suite& suite, const Case& c, CaseResult& r) {
+  refuse_links_below(suite.goldens, c.source->golden_file);
   std::error_code ec;
   if (!fs::remove(c.source->golden_file, ec) && ec) {
     throw std::runtime_error(c.source->golden_file.string() + ": cannot remove: " + ec.message());
@@ -734,7 +751,7 @@ RunResults bless(const Suite& suite, const BlessOptions& b) {
                 std::error_code ec;
                 if (!fs::is_regular_file(fs::symlink_status(f, ec)))
                   throw FileError(f.string() + ": not a regular file");
-                images.png[image] = read_file(f);
+                images.png[image] = read_file(f, kMaxFileBytes);
                 const auto recorded = it->second.image_hashes.find(image);
                 if (recorded == it->second.image_hashes.end() ||
                     recorded->second != bytes_hash(images.png[image])) {
@@ -779,7 +796,7 @@ RunResults bless(const Suite& suite, const BlessOptions& b) {
           }
         }
         if (deleted) {
-          accept_deletion(c, r);
+          accept_deletion(suite, c, r);
         } else {
           write_case_goldens(suite, c, platform, b.tag, images, r);
         }

@@ -503,25 +503,49 @@ Suite load_suite(const fs::path& file) {
 Suite folder_suite(const fs::path& actual, const fs::path& expected, const Tolerance& tolerance) {
   // Relative path -> whether it is in actual, in expected.
   std::map<std::string, std::pair<bool, bool>> paths;
+  std::vector<Skipped> skipped;
   auto scan = [&](const fs::path& root, bool is_actual) {
     std::error_code ec;
     if (!fs::is_directory(root, ec)) {
       throw std::runtime_error(root.string() + ": not a folder" +
                                (ec ? " (" + ec.message() + ")" : std::string()));
     }
+    // Links are never followed (a link may lead out of the folder, to a device, or to
+    // itself): each is skipped and said, as is every file that is not a PNG or EXR image.
     fs::recursive_directory_iterator it(root, ec), end;
     for (; !ec && it != end; it.increment(ec)) {
+      const std::string rel = it->path().lexically_relative(root).generic_string();
+      if (rel.empty() || rel.front() == '.') {
+        if (it->is_directory(ec)) it.disable_recursion_pending();
+        ec.clear();
+        continue;
+      }
+      const fs::file_status st = it->symlink_status(ec);
       const fs::path ext = it->path().extension();
-      if (!it->is_regular_file() || (ext != ".png" && ext != ".exr")) continue;
-      const std::string rel = fs::relative(it->path(), root).generic_string();
-      if (rel.empty() || rel.front() == '.') continue;
-      (is_actual ? paths[rel].first : paths[rel].second) = true;
+      const auto skip = [&](std::string why) {
+        skipped.push_back({(root / rel).generic_string(), std::move(why)});
+      };
+      if (ec) {
+        skip(ec.message());
+        ec.clear();
+      } else if (fs::is_symlink(st)) {
+        skip("a symbolic link (not followed)");
+      } else if (fs::is_directory(st)) {
+        continue;
+      } else if (!fs::is_regular_file(st)) {
+        skip("not a regular file");
+      } else if (ext != ".png" && ext != ".exr") {
+        skip("not a PNG or EXR file");
+      } else {
+        (is_actual ? paths[rel].first : paths[rel].second) = true;
+      }
     }
     if (ec) throw std::runtime_error(root.string() + ": cannot be read: " + ec.message());
   };
   scan(actual, true);
   scan(expected, false);
   Suite suite;
+  suite.skipped = std::move(skipped);
   suite.name = "folder";
   suite.file = actual;
   suite.goldens = expected;

@@ -98,6 +98,12 @@ struct Case {
   Tolerance tolerance;
 };
 
+// A file folder mode left out, and why (a link, not a regular file, not a PNG or EXR).
+struct Skipped {
+  std::string path;  // "actual/sub/a.jpg"
+  std::string why;
+};
+
 struct Suite {
   std::string name;
   std::filesystem::path file;
@@ -108,7 +114,8 @@ struct Suite {
   std::vector<Case> cases;
   // "aosuite bless SUITE" or "aosuite bless --actual A --expected E": how commands name it.
   std::string bless_prefix;
-  std::string check_args;  // what follows "aosuite check " to list its cases
+  std::string check_args;        // what follows "aosuite check " to list its cases
+  std::vector<Skipped> skipped;  // folder mode: files under either folder that are no case
 };
 
 // Folder mode (as reg-cli): one image case per PNG under `actual` or `expected`, paired by

@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <signal.h>
+#include <sys/stat.h>
 
 #include <chrono>
 #include <fstream>
@@ -299,6 +300,78 @@ TEST_F(ImageCases, OneRunAtATimeInAReportOrGoldensFolder) {
   r = aosuite("check s/a.toml --report empty --filter nothing-matches");
   EXPECT_EQ(r.rc, 2) << r.out << r.err;
   EXPECT_FALSE(fs::exists(dir_ / "empty"));
+}
+
+// Folder mode follows no link and reads no device: a self-looping link, a link to /dev/zero,
+// a link out of the folder, a FIFO and a text file are skipped and said, and the run goes on; a
+// golden reached through a link is an ERROR, and bless never writes through a linked folder.
+TEST_F(ImageCases, FolderModeFollowsNoLinkAndSaysWhatItSkipped) {
+  for (const char* d : {"actual/sub", "expected", "outside"}) fs::create_directories(dir_ / d);
+  const fs::path red = dir_ / "s" / "red.png";
+  fs::copy_file(red, dir_ / "actual" / "a.png");
+  fs::copy_file(red, dir_ / "expected" / "a.png");
+  fs::copy_file(red, dir_ / "outside" / "red.png");
+  fs::create_symlink("loop.png", dir_ / "actual" / "loop.png");
+  fs::create_symlink("/dev/zero", dir_ / "actual" / "zero.png");
+  fs::create_symlink("../outside/red.png", dir_ / "actual" / "out.png");
+  ASSERT_EQ(::mkfifo((dir_ / "actual" / "fifo.png").c_str(), 0644), 0);
+  std::ofstream(dir_ / "actual" / "notes.txt") << "not an image";
+  test::Outcome r = aosuite("check --actual actual --expected expected");
+  EXPECT_EQ(r.rc, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("1 images: 1 unchanged"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("skipped 5 files: "), std::string::npos) << r.out;
+  for (const char* said :
+       {"actual/loop.png (a symbolic link (not followed))", "actual/zero.png (a symbolic link",
+        "actual/out.png (a symbolic link", "actual/fifo.png (not a regular file)",
+        "actual/notes.txt (not a PNG or EXR file)"}) {
+    EXPECT_NE(r.out.find(said), std::string::npos) << said << "\n" << r.out;
+  }
+  // A golden that is a link, and one under a linked folder: ERROR, and bless writes nothing.
+  fs::copy_file(red, dir_ / "actual" / "b.png");
+  fs::create_symlink("../outside/red.png", dir_ / "expected" / "b.png");
+  fs::copy_file(red, dir_ / "actual" / "sub" / "c.png");
+  fs::create_symlink("../outside", dir_ / "expected" / "sub");
+  r = aosuite("check --actual actual --expected expected");
+  EXPECT_EQ(r.rc, 2) << r.out << r.err;
+  EXPECT_NE(r.out.find("expected/sub: a symbolic link; nothing is written through it"),
+            std::string::npos)
+      << r.out;
+  r = aosuite("bless --actual actual --expected expected");
+  EXPECT_EQ(r.rc, 2) << r.out << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "outside" / "c.png"));
+  EXPECT_TRUE(fs::is_symlink(dir_ / "expected" / "b.png"));
+  // Nothing but skipped files: said, exit 2, not "0 cases".
+  fs::create_directories(dir_ / "only");
+  fs::create_symlink("/dev/zero", dir_ / "only" / "z.png");
+  r = aosuite("check --actual only --expected only");
+  EXPECT_EQ(r.rc, 2) << r.out << r.err;
+  EXPECT_NE(r.err.find("no PNG or EXR image under only or only; skipped 2: only/z.png"),
+            std::string::npos)
+      << r.err;
+}
+
+// Every read is bounded by the memory budget and names the file it refuses: a shard's 2 GiB
+// results.json, a command's 2 GiB output (sparse files: nothing is written to disk).
+TEST_F(ImageCases, OversizedFilesAreRefusedByName) {
+  fs::create_directories(dir_ / "a");
+  std::ofstream(dir_ / "a" / "results.json").close();
+  fs::resize_file(dir_ / "a" / "results.json", std::uintmax_t{2} << 30);
+  test::Outcome r = aosuite("report merge --out m a");
+  EXPECT_EQ(r.rc, 2) << r.out << r.err;
+  EXPECT_NE(r.err.find("a/results.json: file larger than the 1024 MiB memory budget"),
+            std::string::npos)
+      << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "m"));
+  std::ofstream(dir_ / "s" / "big.toml") << R"(
+[[case]]
+name = "big"
+command = ["truncate", "-s", "2G", "{out}/x.png"]
+outputs = ["x.png"]
+)";
+  r = aosuite("check s/big.toml");
+  EXPECT_EQ(r.rc, 2) << r.out << r.err;
+  EXPECT_NE(r.out.find("x.png: file larger than the 1024 MiB memory budget"), std::string::npos)
+      << r.out;
 }
 
 // A noisy command's output is kept as its last 64 KiB, after a line giving its full size.
