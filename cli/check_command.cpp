@@ -28,6 +28,9 @@ struct HarnessArgs {
   bool diff_all = false, no_reuse = false, platform = false, list = false, json = false;
   bool force = false, from_report = false, failed = false, single_file = false;
   bool wait = false;  // for a folder another run holds, instead of failing at once
+  // bless --failed/--from-report with no suite named: the suite name the report's results.json
+  // gives, which the suite file it names must carry too.
+  std::string report_suite;
 };
 
 void add_selection_options(CLI::App* cmd, HarnessArgs& a) {
@@ -263,13 +266,23 @@ HarnessArgs with_report_suite(HarnessArgs a) {
     throw std::invalid_argument(
         fmt::format("{} was made in folder mode: name --actual DIR --expected DIR", a.report));
   }
-  a.suite = last.suite_file;
+  a.suite = last.suite_file, a.report_suite = last.suite;
   return a;
 }
 
 int run_bless(const HarnessArgs& given) {
   const HarnessArgs a = with_report_suite(given);
   const hs::Suite suite = load(a);
+  if (!a.report_suite.empty()) {
+    // results.json is only data: the suite file it names must be the suite it was made from.
+    if (suite.name != a.report_suite) {
+      throw std::invalid_argument(hs::printable(fmt::format(
+          "{}: names suite file {}, whose suite is '{}', not '{}'; name the suite to bless",
+          (fs::path(a.report) / "results.json").string(), a.suite, suite.name, a.report_suite)));
+    }
+    fmt::print("suite {} (from {})\n", hs::printable(a.suite),
+               hs::printable((fs::path(a.report) / "results.json").string()));
+  }
   hs::BlessOptions b{.run = run_options(suite, a),
                      .platform = a.platform,
                      .tag = a.tag,

@@ -374,6 +374,49 @@ outputs = ["x.png"]
       << r.out;
 }
 
+// An ERROR is never reused: its cause may lie outside every hash (here the EXR library beside
+// the binary, missing, then installed), so the next run judges the case again.
+TEST_F(ImageCases, AnErrorIsJudgedAgainOnceItsCauseIsGone) {
+  const fs::path build = fs::path(AOSUITE_BIN).parent_path(), bin = dir_ / "bin";
+  fs::create_directories(bin);
+  for (const char* f : {"aosuite", "libaosuite_gl.so"}) fs::copy_file(build / f, bin / f);
+  for (const char* d : {"actual", "expected"}) fs::create_directories(dir_ / d);
+  const fs::path exr = fs::path(AOSUITE_SOURCE_DIR) / "fuzz" / "corpus" / "exr";
+  fs::copy_file(exr / "rgb_small.exr", dir_ / "actual" / "x.exr");
+  fs::copy_file(exr / "grey_8x6.exr", dir_ / "expected" / "x.exr");
+  const std::string check = "cd " + dir_.path().string() +
+                            " && bin/aosuite check --actual actual --expected expected " +
+                            "--gate rmse.max=1";
+  test::Outcome r = test::run_shell(check, dir_.path());
+  EXPECT_EQ(r.rc, 2) << r.out << r.err;
+  EXPECT_NE(r.out.find("libaosuite_exr.so"), std::string::npos) << r.out;
+  fs::copy_file(build / "libaosuite_exr.so", bin / "libaosuite_exr.so");
+  r = test::run_shell(check, dir_.path());
+  EXPECT_EQ(r.rc, 1) << r.out << r.err;  // judged: an RGB image against a grey one
+  EXPECT_EQ(r.out.find("reused"), std::string::npos) << r.out;
+}
+
+// `bless --failed --report R` with no suite takes the suite that R's results.json names, only if
+// that suite file is the suite the report was made from: results.json is data, not authority.
+TEST_F(ImageCases, BlessFromAReportChecksTheSuiteItNames) {
+  std::ofstream(dir_ / "s" / "other.toml") << "[[case]]\nname = \"o\"\nfiles = [\"red.png\"]\n";
+  ASSERT_EQ(aosuite("check s/t.toml").rc, 1);  // NEW
+  const fs::path results = dir_ / "reports" / "t" / "results.json";
+  const std::string honest = read_text(results);
+  nlohmann::json j = nlohmann::json::parse(honest);
+  j["suite_file"] = "s/other.toml";
+  std::ofstream(results, std::ios::trunc) << j.dump();
+  test::Outcome r = aosuite("bless --failed --report reports/t");
+  EXPECT_EQ(r.rc, 2) << r.out << r.err;
+  EXPECT_NE(r.err.find("whose suite is 'other', not 't'"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "goldens" / "other"));
+  std::ofstream(results, std::ios::trunc) << honest;
+  r = aosuite("bless --failed --report reports/t");
+  EXPECT_EQ(r.rc, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("suite s/t.toml (from reports/t/results.json)"), std::string::npos) << r.out;
+  EXPECT_EQ(golden(), read_file(dir_ / "reports" / "t" / "cases" / "chart" / "chart.png"));
+}
+
 // A noisy command's output is kept as its last 64 KiB, after a line giving its full size.
 TEST_F(ImageCases, ACommandsOutputIsKeptAsItsLast64KiB) {
   std::ofstream(dir_ / "s" / "noisy.toml") << R"(
