@@ -11,7 +11,6 @@
 #include <string_view>
 
 #include "compare/image_io.hpp"
-#include "compare/opencv.hpp"
 #include "harness/escape.hpp"
 
 namespace aosuite::harness {
@@ -64,22 +63,25 @@ std::string thumbnail(const fs::path& dir, const std::string& rel) {
     if (fs::exists(thumb, ec) && fs::last_write_time(thumb, ec) >= fs::last_write_time(file, ec)) {
       return fs::path(rel).parent_path().string() + "/" + name;
     }
-    const cv::Mat img = decode_png_rgba8(bytes, file.string());
-    const int f = std::max((img.cols + kThumbW - 1) / kThumbW, (img.rows + kThumbH - 1) / kThumbH);
-    cv::Mat small((img.rows + f - 1) / f, (img.cols + f - 1) / f, CV_8UC4);
-    for (int y = 0; y < small.rows; ++y) {
-      for (int x = 0; x < small.cols; ++x) {
+    const RgbaImage img = decode_png(bytes, file.string());
+    const int w = img.width(), h = img.height();
+    const int f = std::max((w + kThumbW - 1) / kThumbW, (h + kThumbH - 1) / kThumbH);
+    RgbaImage small((w + f - 1) / f, (h + f - 1) / f);
+    // Each thumbnail pixel: the rounded mean of the f x f block it covers.
+    for (int y = 0; y < small.height(); ++y) {
+      for (int x = 0; x < small.width(); ++x) {
         int sum[4] = {0, 0, 0, 0}, count = 0;
-        for (int yy = y * f; yy < std::min(img.rows, (y + 1) * f); ++yy) {
-          for (int xx = x * f; xx < std::min(img.cols, (x + 1) * f); ++xx) {
-            const cv::Vec4b p = img.at<cv::Vec4b>(yy, xx);
+        for (int yy = y * f; yy < std::min(h, (y + 1) * f); ++yy) {
+          for (int xx = x * f; xx < std::min(w, (x + 1) * f); ++xx) {
+            const unsigned char* p = img.view().row(yy) + 4 * xx;
             for (int k = 0; k < 4; ++k) sum[k] += p[k];
             ++count;
           }
         }
-        for (int k = 0; k < 4; ++k) {
-          small.at<cv::Vec4b>(y, x)[k] = static_cast<unsigned char>((sum[k] + count / 2) / count);
-        }
+        unsigned char* out =
+            small.data() + 4 * (std::size_t(y) * std::size_t(small.width()) + std::size_t(x));
+        for (int k = 0; k < 4; ++k)
+          out[k] = static_cast<unsigned char>((sum[k] + count / 2) / count);
       }
     }
     const std::vector<unsigned char> png = encode_png_rgba8(small, 6);

@@ -3,9 +3,10 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <stdexcept>
 
-#include "compare/opencv.hpp"
+#include "compare/image_io.hpp"
 #include "compare/picture.hpp"
 #include "compare/png_layout.hpp"
 
@@ -56,50 +57,54 @@ Status parse_status(std::string_view name) {
 
 namespace {
 
+// Pixel i (row-major) of `from` copied into `to`, both packed RGBA8 of one size.
+void copy_pixel(const RgbaImage& from, RgbaImage& to, std::size_t i) {
+  std::copy_n(from.data() + 4 * i, 4, to.data() + 4 * i);
+}
+
 // The render with ignored regions taken from the golden, so neither Resemble nor the channel
 // delta sees a difference there.
-cv::Mat without_ignored(const cv::Mat& render, const cv::Mat& golden, const Tolerance& t,
-                        const Counted* counted) {
+RgbaImage without_ignored(const RgbaImage& render, const RgbaImage& golden, const Tolerance& t,
+                          const Counted* counted) {
   if (t.ignore.empty() && t.mask.empty() && !counted) return render;
-  cv::Mat out = render.clone();
+  RgbaImage out = copy_of(render);
+  const std::size_t w = std::size_t(render.width()), pixels = w * std::size_t(render.height());
   if (counted) {  // background: the golden's pixels, so nothing differs there
-    for (int y = 0; y < out.rows; ++y)
-      for (int x = 0; x < out.cols; ++x)
-        if (!(*counted)[std::size_t(y) * std::size_t(out.cols) + std::size_t(x)])
-          out.at<cv::Vec4b>(y, x) = golden.at<cv::Vec4b>(y, x);
+    for (std::size_t i = 0; i < pixels; ++i)
+      if (!(*counted)[i]) copy_pixel(golden, out, i);
   }
-  const cv::Rect frame(0, 0, render.cols, render.rows);
   for (const resemble::Box& b : t.ignore) {
-    const cv::Rect r =
-        cv::Rect(cv::Point(static_cast<int>(b.left), static_cast<int>(b.top)),
-                 cv::Point(static_cast<int>(b.right) + 1, static_cast<int>(b.bottom) + 1)) &
-        frame;
-    golden(r).copyTo(out(r));
+    // Inclusive corners, clipped to the frame.
+    const auto clip = [](int v, int size) { return std::clamp(v, 0, size); };
+    const int x0 = clip(static_cast<int>(b.left), render.width());
+    const int x1 = clip(static_cast<int>(b.right) + 1, render.width());
+    const int y0 = clip(static_cast<int>(b.top), render.height());
+    const int y1 = clip(static_cast<int>(b.bottom) + 1, render.height());
+    for (int y = y0; y < y1; ++y)
+      for (int x = x0; x < x1; ++x) copy_pixel(golden, out, std::size_t(y) * w + std::size_t(x));
   }
   if (!t.mask.empty()) {
-    const cv::Mat mask = read_png_rgba8(t.mask);
-    if (mask.size() != render.size()) {
+    const RgbaImage mask = read_png(t.mask);
+    if (mask.width() != render.width() || mask.height() != render.height()) {
       throw std::runtime_error(fmt::format("mask {} is {}x{}, the images are {}x{}",
-                                           t.mask.string(), mask.cols, mask.rows, render.cols,
-                                           render.rows));
+                                           t.mask.string(), mask.width(), mask.height(),
+                                           render.width(), render.height()));
     }
-    for (int y = 0; y < mask.rows; ++y) {
-      for (int x = 0; x < mask.cols; ++x) {
-        const cv::Vec4b m = mask.at<cv::Vec4b>(y, x);
-        if (m[0] != 0 || m[1] != 0 || m[2] != 0)
-          out.at<cv::Vec4b>(y, x) = golden.at<cv::Vec4b>(y, x);
-      }
+    for (std::size_t i = 0; i < pixels; ++i) {
+      const unsigned char* m = mask.data() + 4 * i;
+      if (m[0] != 0 || m[1] != 0 || m[2] != 0) copy_pixel(golden, out, i);
     }
   }
   return out;
 }
 
-int max_channel_delta(const cv::Mat& a, const cv::Mat& b) {
-  cv::Mat d;
-  cv::absdiff(a, b, d);
-  double hi = 0;
-  cv::minMaxLoc(d.reshape(1), nullptr, &hi);
-  return static_cast<int>(hi);
+// The largest |a - b| of any R, G, B or A sample.
+int max_channel_delta(const RgbaImage& a, const RgbaImage& b) {
+  const std::size_t n = a.view().bytes();
+  int hi = 0;
+  for (std::size_t i = 0; i < n; ++i)
+    hi = std::max(hi, std::abs(int(a.data()[i]) - int(b.data()[i])));
+  return hi;
 }
 
 resemble::Options resemble_options(const Tolerance& t, bool diff) {
@@ -139,15 +144,15 @@ std::vector<std::uint8_t> region_classes(const fs::path& file, const Tolerance& 
         "{}: no region map (the tolerance has regions; `bless` writes an empty one to paint)",
         file.string()));
   }
-  const cv::Mat map = read_png_rgba8(file);
-  if (map.cols != size.width || map.rows != size.height) {
+  const RgbaImage map = read_png(file);
+  if (map.width() != size.width || map.height() != size.height) {
     throw std::runtime_error(fmt::format("{}: the region map is {}x{}, the image {}x{}",
-                                         file.string(), map.cols, map.rows, size.width,
+                                         file.string(), map.width(), map.height(), size.width,
                                          size.height));
   }
-  std::vector<std::uint8_t> out(map.total(), 0);
+  std::vector<std::uint8_t> out(std::size_t(map.width()) * std::size_t(map.height()), 0);
   for (std::size_t i = 0; i < out.size(); ++i) {
-    const cv::Vec4b p = map.ptr<cv::Vec4b>()[i];
+    const unsigned char* p = map.data() + 4 * i;
     if (p[0] == 0 && p[1] == 0 && p[2] == 0) continue;
     for (std::size_t k = 0; k < t.regions.size() && !out[i]; ++k) {
       const auto& c = t.regions[k].color;
@@ -155,8 +160,8 @@ std::vector<std::uint8_t> region_classes(const fs::path& file, const Tolerance& 
     }
     if (!out[i]) {
       throw std::runtime_error(fmt::format("{}: pixel ({}, {}) is ({}, {}, {}), no region's colour",
-                                           file.string(), i % map.cols, i / map.cols, p[0], p[1],
-                                           p[2]));
+                                           file.string(), i % std::size_t(map.width()),
+                                           i / std::size_t(map.width()), p[0], p[1], p[2]));
     }
   }
   return out;
@@ -191,9 +196,9 @@ std::string failed_gates(const ImageVerdict& v) {
 
 // Resemble's gate on an 8-bit image; true when it holds (or the tolerance does not ask for it).
 // With `counted`, the mismatch is a percentage of the counted pixels, not of the frame.
-bool resemble_gate(const cv::Mat& golden, const cv::Mat& render, const Tolerance& t,
+bool resemble_gate(const RgbaImage& golden, const RgbaImage& render, const Tolerance& t,
                    const Counted* counted, ImageVerdict& v) {
-  const cv::Mat judged = without_ignored(render, golden, t, counted);
+  const RgbaImage judged = without_ignored(render, golden, t, counted);
   const resemble::Result r = resemble::compare(golden, judged, resemble_options(t, false));
   v.mismatch_percent = r.raw_mismatch_percentage;
   v.mismatch_text = r.mismatch_percentage;
@@ -216,15 +221,17 @@ bool resemble_gate(const cv::Mat& golden, const cv::Mat& render, const Tolerance
 
 // The metrics' view of a PNG: its own pixels, a 16-bit one at 16 bits; an 8-bit one already
 // decoded for Resemble is copied, not decoded again.
-Picture metric_picture(std::span<const unsigned char> png, const cv::Mat& decoded,
+Picture metric_picture(std::span<const unsigned char> png, const RgbaImage& decoded,
                        const std::string& name) {
   if (peek_png_header(png, name).bit_depth == 16) return decode_picture(png, name);
-  return picture_of(decoded, name);
+  Picture p;
+  p.name = name, p.rgba = decoded;
+  return p;
 }
 
 // One golden against the render; kError when the golden cannot be read.
 ImageVerdict against(std::string_view image, std::span<const unsigned char> render_bytes,
-                     const cv::Mat& render, const fs::path& golden_file, const Tolerance& t,
+                     const RgbaImage& render, const fs::path& golden_file, const Tolerance& t,
                      bool want_map, const Counted* counted) {
   ImageVerdict v;
   v.image = std::string(image), v.golden = golden_file;
@@ -243,11 +250,11 @@ ImageVerdict against(std::string_view image, std::span<const unsigned char> rend
     }
     bool pass = true;
     if (!is_float) {
-      const cv::Mat golden = decode_png_rgba8(bytes, golden_file.string());
-      if (golden.size() != render.size()) {
+      const RgbaImage golden = decode_png(bytes, golden_file.string());
+      if (golden.width() != render.width() || golden.height() != render.height()) {
         v.status = Status::kFail, v.mismatch_percent = 100, v.mismatch_text = "100.00";
-        v.message = fmt::format("golden is {}x{}, render is {}x{}", golden.cols, golden.rows,
-                                render.cols, render.rows);
+        v.message = fmt::format("golden is {}x{}, render is {}x{}", golden.width(), golden.height(),
+                                render.width(), render.height());
         return v;
       }
       pass = resemble_gate(golden, render, t, counted, v);
@@ -295,7 +302,7 @@ bool closer(const ImageVerdict& a, const ImageVerdict& b) {
 }  // namespace
 
 ImageVerdict judge(std::string_view image, std::span<const unsigned char> render_bytes,
-                   const cv::Mat& render, const std::vector<fs::path>& goldens,
+                   const RgbaImage& render, const std::vector<fs::path>& goldens,
                    const Tolerance& tolerance, bool want_diff, const Counted* counted) {
   if (goldens.empty()) {
     ImageVerdict v;
@@ -319,7 +326,7 @@ ImageVerdict judge(std::string_view image, std::span<const unsigned char> render
   // None passed: report the closest golden.
   ImageVerdict best = *std::min_element(tried.begin(), tried.end(), closer);
   if (want_diff && best.status == Status::kFail && best.mismatch_percent < 100 && !render.empty()) {
-    const cv::Mat golden = read_png_rgba8(best.golden);
+    const RgbaImage golden = read_png(best.golden);
     best.diff = resemble::compare(golden, without_ignored(render, golden, tolerance, counted),
                                   resemble_options(tolerance, true))
                     .diff;

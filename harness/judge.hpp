@@ -2,7 +2,6 @@
 #pragma once
 
 #include <filesystem>
-#include <opencv2/core.hpp>
 #include <span>
 #include <string>
 #include <vector>
@@ -47,7 +46,7 @@ struct ImageVerdict {
 // mismatch percentage and every metric to the flagged pixels.
 using Counted = std::vector<std::uint8_t>;
 ImageVerdict judge(std::string_view image, std::span<const unsigned char> render_bytes,
-                   const cv::Mat& render, const std::vector<std::filesystem::path>& goldens,
+                   const RgbaImage& render, const std::vector<std::filesystem::path>& goldens,
                    const Tolerance& tolerance, bool want_diff, const Counted* counted = nullptr);
 
 }  // namespace aosuite::harness

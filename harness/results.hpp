@@ -41,7 +41,7 @@ struct CaseResult {
   // it: a later run reuses those files only while they still hold exactly these bytes (a bless,
   // or a run killed before its cache was saved, may have replaced them since).
   std::map<std::string, std::string> image_hashes;
-  bool reused = false;                 // inputs and goldens unchanged: nothing re-rendered
+  bool reused = false;  // inputs and goldens unchanged: nothing re-rendered
   double seconds = 0;
   std::string bless_command;   // set for cases that are not passing
   int exit_status = -1;        // a command case's exit status (-1: none ran)

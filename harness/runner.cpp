@@ -102,7 +102,7 @@ namespace {
 // A case's images as PNG bytes and pixels, fresh or reused from the report folder.
 struct Rendered {
   std::map<std::string, std::vector<unsigned char>> png;
-  std::map<std::string, cv::Mat> rgba;
+  std::map<std::string, RgbaImage> rgba;
 };
 
 // A GL context, made when the first case that renders a scene needs one.
@@ -189,11 +189,12 @@ void render_case(rd::Renderer& renderer, const Case& c, const fs::path& case_dir
   s.width = c.width, s.height = c.height, s.technique = c.technique, s.params = c.params;
   s.outputs = {.no_ao = true, .with_ao = true, .ao_only = true, .ao_float = gates_ao_float(c)};
   rd::Images img = renderer.render(*c.scene, rd::find_view(*c.scene, c.view), s);
-  out.rgba = {{"no_ao", img.no_ao}, {"with_ao", img.with_ao}, {"ao_only", img.ao_only}};
   fs::create_directories(case_dir);
-  for (const auto& [name, mat] : out.rgba) {
-    out.png[name] = encode_png_rgba8(mat, 6);
-    keep_in_report(case_dir / (name + ".png"), out.png[name]);
+  for (const auto& [name, mat] :
+       {std::pair{"no_ao", &img.no_ao}, {"with_ao", &img.with_ao}, {"ao_only", &img.ao_only}}) {
+    out.rgba[name] = copy_of(view_of(*mat));
+    out.png[name] = encode_png_rgba8(out.rgba[name], 6);
+    keep_in_report(case_dir / (std::string(name) + ".png"), out.png[name]);
   }
   if (c.tolerance.foreground_only) {
     // Geometry where the G-buffer has depth: white; sky black. Kept, so a reused render has it.
@@ -299,9 +300,9 @@ bool reuse_render(const Case& c, const CaseResult& prev, const fs::path& case_di
   return true;
 }
 
-const cv::Mat& pixels(Rendered& r, const std::string& name, const fs::path& case_dir) {
-  cv::Mat& m = r.rgba[name];
-  if (m.empty()) m = decode_png_rgba8(r.png.at(name), (case_dir / (name + ".png")).string());
+const RgbaImage& pixels(Rendered& r, const std::string& name, const fs::path& case_dir) {
+  RgbaImage& m = r.rgba[name];
+  if (m.empty()) m = decode_png(r.png.at(name), (case_dir / (name + ".png")).string());
   return m;
 }
 
@@ -401,9 +402,9 @@ std::vector<fs::path> goldens_of(const Suite& suite, const Case& c, const std::s
 // foreground_only's pixels: the kept mask's white ones.
 std::optional<Counted> foreground(const Case& c, Rendered& images, const fs::path& case_dir) {
   if (!c.tolerance.foreground_only) return std::nullopt;
-  const cv::Mat& mask = pixels(images, "foreground", case_dir);
-  Counted out(mask.total());
-  for (std::size_t i = 0; i < out.size(); ++i) out[i] = mask.ptr<cv::Vec4b>()[i][0] != 0;
+  const RgbaImage& mask = pixels(images, "foreground", case_dir);
+  Counted out(std::size_t(mask.width()) * std::size_t(mask.height()));
+  for (std::size_t i = 0; i < out.size(); ++i) out[i] = mask.data()[4 * i] != 0;
   return out;
 }
 
@@ -426,9 +427,9 @@ void judge_case(const Suite& suite, const Case& c, const std::string& platform, 
   for (std::size_t i = 0; i < c.images.size(); ++i) {
     const std::string& name = c.images[i];
     const std::string ext = ext_of(c, name);
-    ImageVerdict v =
-        judge(name, images.png.at(name), ext == ".png" ? pixels(images, name, case_dir) : cv::Mat(),
-              goldens[i], c.tolerance, true, counted ? &*counted : nullptr);
+    ImageVerdict v = judge(name, images.png.at(name),
+                           ext == ".png" ? pixels(images, name, case_dir) : RgbaImage(), goldens[i],
+                           c.tolerance, true, counted ? &*counted : nullptr);
     const bool show = v.status == Status::kFail || o.diff_all;
     if (!v.diff.empty() && show) {
       write_png_rgba8(case_dir / ("diff_" + name + ".png"), v.diff);
@@ -641,8 +642,9 @@ void write_case_goldens(const Suite& suite, const Case& c, const std::string& pl
     const fs::path map = region_map(target, image);
     if (!c.tolerance.regions.empty() && !fs::exists(map)) {
       const ImageSize size = decode_picture(images.png.at(image), target.string()).size();
-      blank_maps.push_back(
-          encode_png_rgba8(cv::Mat(size.height, size.width, CV_8UC4, cv::Scalar(0, 0, 0, 255)), 6));
+      RgbaImage black(size.width, size.height);
+      for (std::size_t i = 3; i < black.view().bytes(); i += 4) black.data()[i] = 255;
+      blank_maps.push_back(encode_png_rgba8(black, 6));
       writes.emplace_back(map, blank_maps.back());
       written += ", " + map.string();
     }

@@ -384,7 +384,7 @@ class Judge : public ::testing::Test {
     return dir_ / name;
   }
   ImageVerdict run(const std::vector<fs::path>& goldens, const Tolerance& t = {}) {
-    return judge("with_ao", png_, render_, goldens, t, true);
+    return judge("with_ao", png_, copy_of(view_of(render_)), goldens, t, true);
   }
   test::TempDir dir_;
   cv::Mat render_;
