@@ -36,7 +36,7 @@ struct HarnessArgs {
 void add_selection_options(CLI::App* cmd, HarnessArgs& a) {
   cmd->add_option("suite", a.suite, "suite file, e.g. suites/default.toml");
   cmd->add_option("--actual", a.actual,
-                  "folder mode, without a suite: the new images (PNG files, by relative path)");
+                  "folder mode, without a suite: the new images (image files, by relative path)");
   cmd->add_option("--expected", a.expected,
                   "folder mode: the accepted images, paired with --actual by relative path");
   cmd->add_option("--max-mismatch", a.max_mismatch,
@@ -141,7 +141,7 @@ struct Output {
   const std::vector<hs::Skipped>* skipped = nullptr;  // folder mode's files that are no case
 };
 
-// "a.txt (not a PNG or EXR file), loop.png (a symbolic link (not followed)), and 3 more"
+// "a.txt (not an image file), loop.png (a symbolic link (not followed)), and 3 more"
 std::string skipped_text(const std::vector<hs::Skipped>& skipped) {
   std::string out;
   constexpr std::size_t kShown = 10;
@@ -223,7 +223,7 @@ int run_check(const HarnessArgs& a) {
   const hs::Suite suite = load(a);
   if (!a.actual.empty() && suite.cases.empty()) {
     throw std::invalid_argument(fmt::format(
-        "no PNG or EXR image under {} or {}{}", hs::printable(a.actual), hs::printable(a.expected),
+        "no image file under {} or {}{}", hs::printable(a.actual), hs::printable(a.expected),
         suite.skipped.empty()
             ? std::string()
             : fmt::format("; skipped {}: {}", suite.skipped.size(), skipped_text(suite.skipped))));

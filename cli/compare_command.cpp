@@ -21,8 +21,8 @@
 #include "cli/compare_metrics.hpp"
 #include "common/thread_beside.hpp"
 #include "compare/band_compare.hpp"
+#include "compare/image_file.hpp"
 #include "compare/image_io.hpp"
-#include "compare/picture.hpp"
 #include "compare/png_layout.hpp"
 #include "compare/resemble.hpp"
 #include "compare/resemble_json.hpp"
@@ -197,6 +197,19 @@ void check_budget(const std::string& a, std::span<const unsigned char> bytes_a,
   }
 }
 
+// Resemble on decoded images; writes the diff image when asked.
+rs::Result compare_images(const RgbaImage& a, const RgbaImage& b, const rs::Options& o,
+                          const std::string& diff_path) {
+  rs::Result r = rs::compare(a, b, o);
+  if (!diff_path.empty()) {
+    if (r.diff.empty()) {
+      throw std::invalid_argument("no diff image: --return-early-threshold disables it");
+    }
+    write_png_rgba8(diff_path, r.diff);
+  }
+  return r;
+}
+
 rs::Result compare_files(const std::string& a, const std::string& b, rs::Options o,
                          const std::string& diff_path, Budget budget) {
   const MappedFile file_a(a, budget.bytes), file_b(b, budget.bytes);
@@ -209,12 +222,20 @@ rs::Result compare_files(const std::string& a, const std::string& b, rs::Options
                       *name, metric::names()));
     }
   }
+  o.produce_diff = !diff_path.empty();
+  if (!is_png(bytes_a) || !is_png(bytes_b)) {
+    // Another format (JPEG, TIFF, WebP, ...): its pixels as a canvas holds them, compared as
+    // a PNG's are. No fast path: these files are decoded whole.
+    RgbaImage img_a, img_b;
+    side_by_side([&] { img_b = canvas_rgba8(decode_picture(bytes_b, b, budget.bytes)); },
+                 [&] { img_a = canvas_rgba8(decode_picture(bytes_a, a, budget.bytes)); });
+    return compare_images(img_a, img_b, o, diff_path);
+  }
   const bool identical = std::ranges::equal(bytes_a, bytes_b);
   if (identical && diff_path.empty()) {
     // Byte-identical files cannot differ: check that the PNG decodes, skip its pixels.
     return rs::compare_identical(check_png(bytes_a, a));
   }
-  o.produce_diff = !diff_path.empty();
   if (auto r = compare_png_bands(bytes_a, a, bytes_b, b, o)) return *std::move(r);
   check_budget(a, bytes_a, b, bytes_b, identical, o, budget);
   RgbaImage img_a, img_b;
@@ -223,14 +244,7 @@ rs::Result compare_files(const std::string& a, const std::string& b, rs::Options
   } else {
     side_by_side([&] { img_b = decode_png(bytes_b, b); }, [&] { img_a = decode_png(bytes_a, a); });
   }
-  rs::Result r = rs::compare(img_a, img_b, o);
-  if (!diff_path.empty()) {
-    if (r.diff.empty()) {
-      throw std::invalid_argument("no diff image: --return-early-threshold disables it");
-    }
-    write_png_rgba8(diff_path, r.diff);
-  }
-  return r;
+  return compare_images(img_a, img_b, o, diff_path);
 }
 
 Budget budget_from(const CompareArgs& args) {
@@ -339,8 +353,8 @@ void add_compare_command(CLI::App& app, int& rc) {
       "on PNG (8- or 16-bit) and EXR images (--metric).\n"
       "Exit status: 0 same (mismatch <= --threshold and same size, every --gate holds),\n"
       "1 different, 2 error. Metrics without a --gate are measured, not judged.");
-  cmd->add_option("a", args->a, "first image (PNG)");
-  cmd->add_option("b", args->b, "second image (PNG)");
+  cmd->add_option("a", args->a, "first image (PNG, EXR, JPEG, TIFF, WebP, HDR, TGA, BMP)");
+  cmd->add_option("b", args->b, "second image");
   cmd->add_option("--batch", args->batch,
                   "compare the pairs listed in FILE (- for stdin), one JSON line out per pair; "
                   "the format of resemble-oracle --batch");

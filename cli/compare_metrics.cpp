@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "common/thread_beside.hpp"
+#include "compare/image_file.hpp"
 #include "compare/image_io.hpp"
 
 namespace aosuite::cli {

@@ -57,16 +57,9 @@ float* allocate(void* user, int width, int height, int channels) {
     a.refused = fmt::format("EXR has an empty data window ({}x{})", width, height);
     return nullptr;
   }
-  if (pixels > kMaxImagePixels) {
-    a.refused = fmt::format("{}x{} is over the {}-pixel limit", width, height, kMaxImagePixels);
-    return nullptr;
-  }
-  const std::uint64_t bytes = pixels * std::uint64_t(channels) * sizeof(float);
-  if (bytes > a.max_bytes) {
-    a.refused = fmt::format(
-        "{}x{} with {} channel(s) needs {} MiB decoded, over the {} MiB memory "
-        "budget (--memory-limit MIB)",
-        width, height, channels, (bytes + (1 << 20) - 1) >> 20, a.max_bytes >> 20);
+  if (std::string why = decode_budget_problem(width, height, channels, sizeof(float), a.max_bytes);
+      !why.empty()) {
+    a.refused = std::move(why);
     return nullptr;
   }
   a.image->width = width, a.image->height = height, a.image->channels = channels;

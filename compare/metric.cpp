@@ -69,7 +69,7 @@ Measurement measure(const Metric& metric, const Picture& reference, const Pictur
         "one size",
         test.name, sb.width, sb.height, reference.name, sa.width, sa.height, metric.name));
   }
-  if (reference.kind() != test.kind()) {
+  if (!same_kind(reference, test)) {
     throw std::invalid_argument(fmt::format("{}: {}, but {} is {}: {} compares images of one kind",
                                             test.name, test.kind(), reference.name,
                                             reference.kind(), metric.name));

@@ -2,9 +2,11 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cctype>
+#include <cmath>
 #include <cstring>
 
-#include "compare/exr_file.hpp"
 #include "compare/image_io.hpp"
 #include "compare/png_layout.hpp"
 
@@ -16,44 +18,55 @@ ImageSize Picture::size() const {
 
 std::string Picture::kind() const {
   if (!is_float) return "8-bit RGBA";
-  return fmt::format("{}, {} channel{}", floats.srgb ? "16-bit PNG" : "EXR", floats.channels,
+  return fmt::format("{}{}, {} channel{}", floats.srgb ? "16-bit " : "", format, floats.channels,
                      floats.channels == 1 ? "" : "s");
+}
+
+bool same_kind(const Picture& a, const Picture& b) {
+  if (a.is_float != b.is_float) return false;
+  return !a.is_float || (a.floats.srgb == b.floats.srgb && a.floats.channels == b.floats.channels);
+}
+
+bool is_image_name(const std::filesystem::path& name) {
+  static constexpr std::string_view kExtensions[] = {".png",  ".exr",  ".jpg", ".jpeg", ".tif",
+                                                     ".tiff", ".webp", ".hdr", ".tga",  ".bmp"};
+  std::string ext = name.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return std::ranges::find(kExtensions, ext) != std::end(kExtensions);
+}
+
+RgbaImage canvas_rgba8(const Picture& p) {
+  if (!p.is_float) return p.rgba;
+  if (!p.floats.srgb) {
+    throw FileError(fmt::format(
+        "{}: a float {} image; Resemble.js compares 8-bit images, as a browser canvas holds "
+        "them (for float images: --metric flip, ssim, rmse or psnr)",
+        p.name, p.format));
+  }
+  const FloatImage& f = p.floats;
+  RgbaImage out(f.width, f.height);
+  const std::size_t pixels = std::size_t(f.width) * std::size_t(f.height);
+  for (std::size_t i = 0; i < pixels; ++i) {
+    unsigned char* o = out.data() + 4 * i;
+    for (std::size_t c = 0; c < 3; ++c) {
+      // The high byte of the 16-bit sample, as the PNG path (libspng) and browsers keep it.
+      const float v = f.data[i * std::size_t(f.channels) + (f.channels == 3 ? c : 0)];
+      o[c] = static_cast<unsigned char>(std::lround(std::clamp(v, 0.0f, 1.0f) * 65535.0f) >> 8);
+    }
+    o[3] = 255;
+  }
+  return out;
+}
+
+bool is_png(std::span<const unsigned char> bytes) {
+  static constexpr unsigned char kMagic[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  return bytes.size() >= 8 && std::memcmp(bytes.data(), kMagic, 8) == 0;
 }
 
 bool is_exr(std::span<const unsigned char> bytes) {
   static constexpr unsigned char kMagic[4] = {0x76, 0x2f, 0x31, 0x01};
   return bytes.size() >= 4 && std::memcmp(bytes.data(), kMagic, 4) == 0;
-}
-
-Picture decode_picture(std::span<const unsigned char> bytes, const std::string& name,
-                       std::uint64_t max_bytes) {
-  Picture p;
-  p.name = name;
-  if (is_exr(bytes)) {
-    p.is_float = true;
-    p.floats = decode_exr(bytes, name, max_bytes);
-    return p;
-  }
-  const PngHeader h = peek_png_header(bytes, name);
-  const std::uint64_t pixels = std::uint64_t(h.width) * h.height;
-  const std::uint64_t need = pixels * (h.bit_depth == 16 ? 3 * sizeof(float) + 8 : 4);
-  if (need > max_bytes) {
-    throw FileError(
-        fmt::format("{}: {}x{} pixels need {} MiB decoded, over the {} MiB memory "
-                    "budget (--memory-limit MIB)",
-                    name, h.width, h.height, (need + (1 << 20) - 1) >> 20, max_bytes >> 20));
-  }
-  if (h.bit_depth == 16) {
-    p.is_float = true;
-    p.floats = decode_png16(bytes, name);
-  } else {
-    p.rgba = decode_png(bytes, name);
-  }
-  return p;
-}
-
-Picture read_picture(const std::filesystem::path& path, std::uint64_t max_bytes) {
-  return decode_picture(MappedFile(path, max_bytes).bytes(), path.string(), max_bytes);
 }
 
 FloatImage to_float(RgbaView rgba) {

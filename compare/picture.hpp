@@ -1,6 +1,7 @@
 // An image as the metrics take it, whatever file it came from: 8-bit sRGB RGBA (8-bit PNGs,
-// as Resemble.js and FLIP's LDR mode see them) or float samples (EXR, and 16-bit PNGs kept at
-// 16 bits). Float images hold one channel (grey, Y) or three (R, G, B), interleaved.
+// JPEG, WebP, ..., as Resemble.js and FLIP's LDR mode see them) or float samples (EXR, Radiance
+// HDR and float TIFF as linear light; 16-bit PNG and TIFF kept at 16 bits, sRGB-encoded). Float
+// images hold one channel (grey, Y) or three (R, G, B), interleaved.
 #pragma once
 
 #include <cstdint>
@@ -14,7 +15,8 @@
 namespace aosuite {
 
 struct Picture {
-  std::string name;  // the file, for messages
+  std::string name;    // the file, for messages
+  std::string format;  // "PNG", "EXR", "JPEG", "TIFF", "WebP", "Radiance HDR", ...
   bool is_float = false;
   RgbaImage rgba;     // !is_float
   FloatImage floats;  // is_float
@@ -23,15 +25,26 @@ struct Picture {
   std::string kind() const;
 };
 
-// Whether these bytes start an OpenEXR file.
-bool is_exr(std::span<const unsigned char> bytes);
+// Whether two pictures hold the same kind of samples (8-bit; 16-bit sRGB; linear float) and as
+// many channels, whatever their file formats: what a metric can compare.
+bool same_kind(const Picture& a, const Picture& b);
 
-// The file as a Picture: PNG of any kind (16-bit ones as float), or EXR (through
-// libaosuite_exr.so, opened on the first EXR). Throws FileError naming the file and the
-// problem. `max_bytes` bounds the file and the decoded pixels alike.
-Picture read_picture(const std::filesystem::path& path, std::uint64_t max_bytes = UINT64_MAX);
-Picture decode_picture(std::span<const unsigned char> bytes, const std::string& name,
-                       std::uint64_t max_bytes = UINT64_MAX);
+// The image formats aosuite reads: PNG and EXR itself, the others through OpenImageIO
+// (libaosuite_oiio.so, opened on the first such file). For messages.
+inline constexpr const char* kImageFormats =
+    "PNG, EXR, JPEG, TIFF (8, 16-bit, float), WebP, Radiance HDR, Targa, BMP";
+// Whether a file name's extension is one of theirs (folder mode pairs these).
+bool is_image_name(const std::filesystem::path& name);
+
+// An 8-bit RGBA view of a picture as a browser canvas holds it, which is what Resemble.js
+// compares: 8-bit images as they are, 16-bit ones by their high byte (as aosuite's and the
+// browsers' PNG decoders reduce 16-bit PNGs). Throws FileError for a float (linear) image,
+// which a canvas cannot hold.
+RgbaImage canvas_rgba8(const Picture& p);
+
+// Whether these bytes start a PNG file, an OpenEXR file.
+bool is_png(std::span<const unsigned char> bytes);
+bool is_exr(std::span<const unsigned char> bytes);
 
 // A float image of an RGBA8 one: R, G, B as v / 255, still sRGB-encoded.
 FloatImage to_float(RgbaView rgba);

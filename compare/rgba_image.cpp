@@ -1,5 +1,6 @@
 #include "compare/rgba_image.hpp"
 
+#include <fmt/format.h>
 #include <sys/mman.h>
 
 #include <cstdint>
@@ -65,6 +66,20 @@ RgbaImage::RgbaImage(PixelBuffer pixels, int width, int height)
   if (width < 0 || height < 0 || pixels_.size() < view().bytes()) {
     throw std::invalid_argument("RgbaImage: buffer smaller than width x height x 4");
   }
+}
+
+std::string decode_budget_problem(int width, int height, int channels, int sample,
+                                  std::uint64_t max_bytes) {
+  const std::uint64_t pixels = std::uint64_t(width) * std::uint64_t(height);
+  if (pixels > kMaxImagePixels) {
+    return fmt::format("{}x{} is over the {}-pixel limit", width, height, kMaxImagePixels);
+  }
+  const std::uint64_t bytes = pixels * std::uint64_t(channels) * std::uint64_t(sample);
+  if (bytes <= max_bytes) return "";
+  return fmt::format(
+      "{}x{} with {} channel(s) needs {} MiB decoded, over the {} MiB memory budget "
+      "(--memory-limit MIB)",
+      width, height, channels, (bytes + (1 << 20) - 1) >> 20, max_bytes >> 20);
 }
 
 RgbaImage copy_of(RgbaView v) {

@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 namespace aosuite {
@@ -14,6 +15,12 @@ namespace aosuite {
 // Images larger than this are refused before any pixel memory is allocated: 2^28 pixels is
 // 1 GiB of RGBA8, already far beyond any render this suite makes.
 inline constexpr std::uint64_t kMaxImagePixels = std::uint64_t{1} << 28;
+
+// Why width x height pixels of `channels` samples of `sample` bytes cannot be decoded within
+// max_bytes ("WxH is over the N-pixel limit", "... needs N MiB decoded, over the N MiB memory
+// budget (--memory-limit MIB)"), or "" when they can. Sizes must be positive.
+std::string decode_budget_problem(int width, int height, int channels, int sample,
+                                  std::uint64_t max_bytes);
 
 struct ImageSize {
   int width = 0, height = 0;

@@ -6,8 +6,8 @@
 #include <cstdlib>
 #include <stdexcept>
 
+#include "compare/image_file.hpp"
 #include "compare/image_io.hpp"
-#include "compare/picture.hpp"
 #include "compare/png_layout.hpp"
 
 namespace aosuite::harness {
@@ -221,9 +221,11 @@ bool resemble_gate(const RgbaImage& golden, const RgbaImage& render, const Toler
 
 // The metrics' view of a PNG: its own pixels, a 16-bit one at 16 bits; an 8-bit one already
 // decoded for Resemble is copied, not decoded again.
-Picture metric_picture(std::span<const unsigned char> png, const RgbaImage& decoded,
+Picture metric_picture(std::span<const unsigned char> file, const RgbaImage& decoded,
                        const std::string& name) {
-  if (peek_png_header(png, name).bit_depth == 16) return decode_picture(png, name);
+  if (!is_png(file) || peek_png_header(file, name).bit_depth == 16) {
+    return decode_picture(file, name, kMaxFileBytes);  // 16-bit samples at full precision
+  }
   Picture p;
   p.name = name, p.rgba = decoded;
   return p;
@@ -250,7 +252,7 @@ ImageVerdict against(std::string_view image, std::span<const unsigned char> rend
     }
     bool pass = true;
     if (!is_float) {
-      const RgbaImage golden = decode_png(bytes, golden_file.string());
+      const RgbaImage golden = decode_rgba8(bytes, golden_file.string(), kMaxFileBytes);
       if (golden.width() != render.width() || golden.height() != render.height()) {
         v.status = Status::kFail, v.mismatch_percent = 100, v.mismatch_text = "100.00";
         v.message = fmt::format("golden is {}x{}, render is {}x{}", golden.width(), golden.height(),
@@ -269,10 +271,10 @@ ImageVerdict against(std::string_view image, std::span<const unsigned char> rend
         }
       }
     } else {
-      const Picture golden = decode_picture(bytes, golden_file.string());
-      const Picture rendered = decode_picture(render_bytes, "the render");
+      const Picture golden = decode_picture(bytes, golden_file.string(), kMaxFileBytes);
+      const Picture rendered = decode_picture(render_bytes, "the render", kMaxFileBytes);
       const ImageSize gs = golden.size(), rs = rendered.size();
-      if (gs.width != rs.width || gs.height != rs.height || golden.kind() != rendered.kind()) {
+      if (gs.width != rs.width || gs.height != rs.height || !same_kind(golden, rendered)) {
         v.status = Status::kFail, v.mismatch_percent = 100, v.mismatch_text = "100.00";
         v.message = fmt::format("golden is {}x{} {}, render is {}x{} {}", gs.width, gs.height,
                                 golden.kind(), rs.width, rs.height, rendered.kind());
@@ -326,7 +328,8 @@ ImageVerdict judge(std::string_view image, std::span<const unsigned char> render
   // None passed: report the closest golden.
   ImageVerdict best = *std::min_element(tried.begin(), tried.end(), closer);
   if (want_diff && best.status == Status::kFail && best.mismatch_percent < 100 && !render.empty()) {
-    const RgbaImage golden = read_png(best.golden);
+    const std::vector<unsigned char> bytes = read_file(best.golden, kMaxFileBytes);
+    const RgbaImage golden = decode_rgba8(bytes, best.golden.string(), kMaxFileBytes);
     best.diff = resemble::compare(golden, without_ignored(render, golden, tolerance, counted),
                                   resemble_options(tolerance, true))
                     .diff;

@@ -13,9 +13,9 @@
 
 #include "common/content_hash.hpp"
 #include "compare/exr_file.hpp"
+#include "compare/image_file.hpp"
 #include "compare/image_io.hpp"
 #include "compare/opencv.hpp"
-#include "compare/picture.hpp"
 #include "harness/case_hash.hpp"
 #include "harness/command.hpp"
 #include "harness/escape.hpp"
@@ -300,9 +300,21 @@ bool reuse_render(const Case& c, const CaseResult& prev, const fs::path& case_di
   return true;
 }
 
-const RgbaImage& pixels(Rendered& r, const std::string& name, const fs::path& case_dir) {
+// A case's image as Resemble sees it, 8-bit RGBA, decoded once; empty for a float (linear)
+// image, which only the metrics judge.
+const RgbaImage& pixels(Rendered& r, const Case& c, const std::string& name,
+                        const fs::path& case_dir) {
   RgbaImage& m = r.rgba[name];
-  if (m.empty()) m = decode_png(r.png.at(name), (case_dir / (name + ".png")).string());
+  if (!m.empty()) return m;
+  const std::vector<unsigned char>& bytes = r.png.at(name);
+  const std::string ext = ext_of(c, name), file = (case_dir / (name + ext)).string();
+  if (ext == ".exr") return m;  // float, whatever the bytes: the metrics (or bytes) judge it
+  if (is_png(bytes)) {
+    m = decode_png(bytes, file);
+  } else if (!is_exr(bytes)) {
+    const Picture p = decode_picture(bytes, file, kMaxFileBytes);
+    if (!p.is_float || p.floats.srgb) m = canvas_rgba8(p);
+  }
   return m;
 }
 
@@ -402,7 +414,7 @@ std::vector<fs::path> goldens_of(const Suite& suite, const Case& c, const std::s
 // foreground_only's pixels: the kept mask's white ones.
 std::optional<Counted> foreground(const Case& c, Rendered& images, const fs::path& case_dir) {
   if (!c.tolerance.foreground_only) return std::nullopt;
-  const RgbaImage& mask = pixels(images, "foreground", case_dir);
+  const RgbaImage& mask = pixels(images, c, "foreground", case_dir);
   Counted out(std::size_t(mask.width()) * std::size_t(mask.height()));
   for (std::size_t i = 0; i < out.size(); ++i) out[i] = mask.data()[4 * i] != 0;
   return out;
@@ -427,8 +439,7 @@ void judge_case(const Suite& suite, const Case& c, const std::string& platform, 
   for (std::size_t i = 0; i < c.images.size(); ++i) {
     const std::string& name = c.images[i];
     const std::string ext = ext_of(c, name);
-    ImageVerdict v = judge(name, images.png.at(name),
-                           ext == ".png" ? pixels(images, name, case_dir) : RgbaImage(), goldens[i],
+    ImageVerdict v = judge(name, images.png.at(name), pixels(images, c, name, case_dir), goldens[i],
                            c.tolerance, true, counted ? &*counted : nullptr);
     const bool show = v.status == Status::kFail || o.diff_all;
     if (!v.diff.empty() && show) {

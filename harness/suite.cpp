@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "common/toml_reader.hpp"
+#include "compare/picture.hpp"
 #include "harness/escape.hpp"
 #include "renderer/params.hpp"
 #include "renderer/scene/scene_file.hpp"
@@ -205,9 +206,9 @@ void read_common(const Reader& r, const fs::path& dir, const toml::table& t, Com
 
 // An image's name from its file: the stem, which names golden and report files.
 std::string image_name(const Reader& r, const toml::node& at, const fs::path& file) {
-  const std::string ext = file.extension().string();
-  if (ext != ".png" && ext != ".exr") {
-    r.fail(at.source(), "'" + printable(file.string()) + "' is not a .png or .exr file");
+  if (!is_image_name(file)) {
+    r.fail(at.source(), "'" + printable(file.string()) + "' is not an image file (aosuite reads " +
+                            kImageFormats + ")");
   }
   const std::string stem = file.stem().string();
   if (!valid_name(stem) || stem == "case" || stem.starts_with("golden_") ||
@@ -297,7 +298,8 @@ Case image_case(const Reader& r, const fs::path& dir, const toml::table& t, Comm
       k.images.push_back(image_name(r, *files, f));
     }
   }
-  // One file type per case: PNGs (Resemble and the metrics) or EXRs (the metrics, else bytes).
+  // One file type per case: 8-bit images (Resemble and the metrics), or 16-bit and float ones
+  // (the metrics, else bytes).
   const std::vector<std::string>& names =
       command ? src->outputs : std::vector<std::string>(src->files.begin(), src->files.end());
   if (names.empty()) r.fail(t.source(), "an image case needs at least one image");
@@ -305,7 +307,7 @@ Case image_case(const Reader& r, const fs::path& dir, const toml::table& t, Comm
   for (const std::string& n : names) {
     if (fs::path(n).extension() != src->ext) {
       r.fail((command ? *t.get("outputs") : *files).source(),
-             "a case's images are all .png or all .exr");
+             "a case's images are all of one file type (all .png, all .exr, ...)");
     }
   }
   std::set<std::string> seen;
@@ -521,7 +523,6 @@ Suite folder_suite(const fs::path& actual, const fs::path& expected, const Toler
         continue;
       }
       const fs::file_status st = it->symlink_status(ec);
-      const fs::path ext = it->path().extension();
       const auto skip = [&](std::string why) {
         skipped.push_back({(root / rel).generic_string(), std::move(why)});
       };
@@ -534,8 +535,8 @@ Suite folder_suite(const fs::path& actual, const fs::path& expected, const Toler
         continue;
       } else if (!fs::is_regular_file(st)) {
         skip("not a regular file");
-      } else if (ext != ".png" && ext != ".exr") {
-        skip("not a PNG or EXR file");
+      } else if (!is_image_name(it->path())) {
+        skip("not an image file");
       } else {
         (is_actual ? paths[rel].first : paths[rel].second) = true;
       }

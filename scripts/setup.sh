@@ -9,13 +9,15 @@ PACKAGES=(
   libspng-dev libisal-dev libopencv-core-dev libfmt-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev libbenchmark-dev
   libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri libglm-dev libopenimageio-dev libopenexr-dev
-  libtomlplusplus-dev libassimp-dev libxxhash-dev libembree-dev
+  libtomlplusplus-dev libassimp-dev libxxhash-dev libembree-dev libwebp-dev
   chromium
   # clang and libFuzzer's runtime: the fuzz targets (fuzz/run.sh, the fuzz_smoke test).
   clang libclang-rt-dev
   # scikit-image 0.19: the SSIM oracle of the oracle-live test (tests/oracles/metric_oracle.py);
   # the unit tests read its committed numbers and do not need it.
   python3-skimage
+  # Pillow: the oracle of tests/oracles/pillow_formats.py (JPEG, TIFF, WebP, BMP, Targa pixels).
+  python3-pil
 )
 
 # OSMesa is optional (Mesa 25.1 removed it): installed where the distribution still has it, for

@@ -71,8 +71,11 @@ TEST(ThreadBeside, RunsTheWorkAndJoinsItOnDestruction) {
 TEST(ThreadBeside, NeverRunsOnItsCreatorsCpu) {
   const cpu_set_t creator = my_cpus();
   if (CPU_COUNT(&creator) < 2) GTEST_SKIP() << "needs a thread allowed two CPUs";
-  int still = 0;  // rounds where the creator was on one CPU throughout
-  for (int round = 0; round < 50; ++round) {
+  // Rounds where the creator was on one CPU throughout, so the excluded CPU is known. Every
+  // round checks the set; these also check which CPU is left out. One such round is enough,
+  // and even a loaded machine (ctest -j beside a build) leaves a thread still in 1 of 400.
+  int still = 0;
+  for (int round = 0; round < 400; ++round) {
     cpu_set_t seen;
     int ran_on = -1;
     const int before = sched_getcpu();
@@ -90,7 +93,7 @@ TEST(ThreadBeside, NeverRunsOnItsCreatorsCpu) {
       ASSERT_FALSE(CPU_ISSET(before, &seen)) << "allowed its creator's CPU " << before;
     }
   }
-  EXPECT_GE(still, 10) << "the creator kept moving: the CPU it was on went unchecked";
+  EXPECT_GE(still, 1) << "the creator kept moving: the CPU it was on went unchecked";
 }
 
 // A creator held to one CPU gives its thread that CPU: there is no other.

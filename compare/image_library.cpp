@@ -1,0 +1,135 @@
+// libaosuite_oiio.so: other image formats through OpenImageIO (compare/image_library.hpp).
+#include "compare/image_library.hpp"
+
+#include <OpenImageIO/filesystem.h>
+#include <OpenImageIO/imageio.h>
+#include <webp/decode.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <exception>
+#include <filesystem>
+#include <memory>
+#include <string>
+
+namespace {
+
+// The extension OpenImageIO's reader registry knows the format by, from the file's signature.
+std::string extension_from_signature(const unsigned char* b, std::size_t n, const char* name) {
+  const auto starts = [&](const char* magic, std::size_t at = 0) {
+    const std::size_t len = std::strlen(magic);
+    return n >= at + len && std::memcmp(b + at, magic, len) == 0;
+  };
+  if (n >= 3 && b[0] == 0xFF && b[1] == 0xD8 && b[2] == 0xFF) return "jpg";
+  if (starts("II*") || (n >= 4 && b[0] == 'M' && b[1] == 'M' && b[2] == 0 && b[3] == '*'))
+    return "tif";
+  if (starts("RIFF") && starts("WEBP", 8)) return "webp";
+  if (starts("#?RADIANCE") || starts("#?RGBE")) return "hdr";
+  if (starts("BM")) return "bmp";
+  if (starts("GIF8")) return "gif";
+  // Targa alone has no signature: its extension names it. Anything else unrecognised is no
+  // image (OpenImageIO's EXR reader, handed two bytes named .exr, spun forever).
+  std::string ext = std::filesystem::path(name).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext == ".tga" ? "tga" : "";
+}
+
+// WebP through libwebp itself: OpenImageIO 2.4's reader multiplies colour by alpha whatever it
+// is asked, and that cannot be undone exactly. RGBA, as a canvas holds it.
+int read_webp(const unsigned char* bytes, std::size_t size,
+              void* (*allocate)(void*, int, int, int, int), void* user, std::string& why) {
+  int width = 0, height = 0;
+  if (!WebPGetInfo(bytes, size, &width, &height)) {
+    why = "WebP: not a WebP image libwebp decodes";
+    return 1;
+  }
+  auto* pixels = static_cast<std::uint8_t*>(allocate(user, width, height, 4, 1));
+  if (!pixels) {
+    why = "refused";
+    return 1;
+  }
+  const std::size_t stride = std::size_t(width) * 4;
+  if (!WebPDecodeRGBAInto(bytes, size, pixels, stride * std::size_t(height), int(stride))) {
+    why = "WebP: libwebp could not decode it";
+    return 1;
+  }
+  return 0;
+}
+
+void say(char* out, std::size_t len, const std::string& text) {
+  if (len == 0) return;
+  std::string line = text;
+  std::replace(line.begin(), line.end(), '\n', ' ');
+  std::snprintf(out, len, "%s", line.c_str());
+}
+
+}  // namespace
+
+extern "C" int aosuite_read_image(const unsigned char* bytes, std::size_t size, const char* name,
+                                  void* (*allocate)(void*, int, int, int, int), void* user,
+                                  char* format, std::size_t format_len, char* err,
+                                  std::size_t err_len) {
+  try {
+    const std::string ext = extension_from_signature(bytes, size, name);
+    if (ext.empty()) {
+      say(err, err_len, "not an image: no signature of a format aosuite reads");
+      return 1;
+    }
+    // The bytes, never the file: a pipe or FIFO has been read already, and what was checked is
+    // what is decoded. The name only tells OpenImageIO which reader to use.
+    if (ext == "webp") {
+      say(format, format_len, "webp");
+      std::string why;
+      const int rc = read_webp(bytes, size, allocate, user, why);
+      say(err, err_len, why);
+      return rc;
+    }
+    OIIO::Filesystem::IOMemReader memory(const_cast<unsigned char*>(bytes), size);
+    // Colour samples as stored, never multiplied by alpha (what a PNG holds, and a canvas shows).
+    OIIO::ImageSpec config;
+    config.attribute("oiio:UnassociatedAlpha", 1);
+    void* proxy = &memory;  // for readers that open again (TIFF does, for some layouts)
+    config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
+    std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open("image." + ext, &config, &memory);
+    if (!in) {
+      // OpenImageIO names the stand-in "image.<ext>": say the file's own name instead.
+      std::string why = OIIO::geterror();
+      const std::string stand_in = "image." + ext, own = std::filesystem::path(name).filename();
+      for (std::size_t at; (at = why.find(stand_in)) != std::string::npos;)
+        why.replace(at, stand_in.size(), own);
+      say(err, err_len, "cannot be read as ." + ext + ": " + why);
+      return 1;
+    }
+    say(format, format_len, in->format_name());
+    const OIIO::ImageSpec& spec = in->spec();
+    const int channels = std::min(spec.nchannels, 4);
+    const OIIO::TypeDesc stored = spec.format;
+    const int sample = stored == OIIO::TypeDesc::UINT8    ? 1
+                       : stored == OIIO::TypeDesc::UINT16 ? 2
+                                                          : 4;
+    if (spec.width <= 0 || spec.height <= 0 || channels <= 0) {
+      say(err, err_len, "an empty image");
+      return 1;
+    }
+    void* pixels = allocate(user, spec.width, spec.height, channels, sample);
+    if (!pixels) {
+      say(err, err_len, "refused");
+      return 1;
+    }
+    const OIIO::TypeDesc as = sample == 1   ? OIIO::TypeDesc::UINT8
+                              : sample == 2 ? OIIO::TypeDesc::UINT16
+                                            : OIIO::TypeDesc::FLOAT;
+    if (!in->read_image(0, 0, 0, channels, as, pixels)) {
+      say(err, err_len, std::string(in->format_name()) + ": " + in->geterror());
+      return 1;
+    }
+    return 0;
+  } catch (const std::exception& e) {
+    say(err, err_len, e.what());
+    return 1;
+  }
+}

@@ -1,0 +1,23 @@
+// libaosuite_oiio.so's C entry point (compare/image_library.cpp): every image format that
+// OpenImageIO reads, beyond PNG and EXR, which aosuite decodes itself. Only C types cross the
+// boundary: compare/other_formats.cpp opens the library only when a file is neither, so a PNG
+// comparison never pays OpenImageIO's start-up.
+#pragma once
+
+#include <cstddef>
+
+extern "C" {
+
+// Decodes an image file held in memory: its first subimage's first `channels` channels (at most
+// 4) as samples of `sample` bytes (1: uint8, 2: uint16, 4: float, for anything wider). The
+// format comes from the bytes' signature, else from `name`'s extension (Targa has none).
+// `allocate(user, width, height, channels, sample)` returns room for width * height * channels
+// samples, or nullptr to refuse the size. `format` receives OpenImageIO's format name ("jpeg",
+// "tiff", "webp", "hdr", "targa", "bmp", ...). 0 on success; else 1 with a one-line reason in err
+// (a refusal by the allocator says only "refused": the allocator keeps its own reason).
+int aosuite_read_image(const unsigned char* bytes, std::size_t size, const char* name,
+                       void* (*allocate)(void* user, int width, int height, int channels,
+                                         int sample),
+                       void* user, char* format, std::size_t format_len, char* err,
+                       std::size_t err_len);
+}
