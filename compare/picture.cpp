@@ -50,7 +50,8 @@ RgbaImage canvas_rgba8(const Picture& p) {
   for (std::size_t i = 0; i < pixels; ++i) {
     unsigned char* o = out.data() + 4 * i;
     for (std::size_t c = 0; c < 3; ++c) {
-      // The high byte of the 16-bit sample, as the PNG path (libspng) and browsers keep it.
+      // The high byte of the 16-bit sample, as aosuite's PNG path keeps a 16-bit PNG's
+      // (pillow_formats checks the two agree).
       const float v = f.data[i * std::size_t(f.channels) + (f.channels == 3 ? c : 0)];
       o[c] = static_cast<unsigned char>(std::lround(std::clamp(v, 0.0f, 1.0f) * 65535.0f) >> 8);
     }

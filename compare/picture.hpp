@@ -37,9 +37,9 @@ inline constexpr const char* kImageFormats =
 bool is_image_name(const std::filesystem::path& name);
 
 // An 8-bit RGBA view of a picture as a browser canvas holds it, which is what Resemble.js
-// compares: 8-bit images as they are, 16-bit ones by their high byte (as aosuite's and the
-// browsers' PNG decoders reduce 16-bit PNGs). Throws FileError for a float (linear) image,
-// which a canvas cannot hold.
+// compares: 8-bit images as they are, 16-bit ones by their high byte (as aosuite's PNG
+// decoder reduces a 16-bit PNG). Throws FileError for a float (linear) image, which a canvas
+// cannot hold.
 RgbaImage canvas_rgba8(const Picture& p);
 
 // Whether these bytes start a PNG file, an OpenEXR file.
