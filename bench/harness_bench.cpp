@@ -5,8 +5,9 @@
 
 #include <filesystem>
 
+#include "ao/scene_cases.hpp"
 #include "harness/runner.hpp"
-#include "harness/suite.hpp"
+#include "harness/suite_file.hpp"
 
 namespace {
 
@@ -14,7 +15,10 @@ namespace fs = std::filesystem;
 namespace hs = aosuite::harness;
 
 const hs::Suite& default_suite() {
-  static const hs::Suite s = hs::load_suite(fs::path(AOSUITE_SOURCE_DIR) / "suites/default.toml");
+  static const hs::Suite s = [] {
+    aosuite::ao::register_scene_cases();
+    return hs::load_suite(fs::path(AOSUITE_SOURCE_DIR) / "suites/default.toml");
+  }();
   return s;
 }
 

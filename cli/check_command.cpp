@@ -13,6 +13,7 @@
 #include "harness/html_report.hpp"
 #include "harness/junit.hpp"
 #include "harness/runner.hpp"
+#include "harness/suite_file.hpp"
 
 namespace aosuite::cli {
 namespace {

@@ -32,9 +32,9 @@ void guarded(CLI::App* cmd, int& rc, const char* name, F f) {
 void add_compare_command(CLI::App& app, int& rc);
 void add_render_command(CLI::App& app, int& rc);      // in libaosuite_gl.so
 void add_scenes_command(CLI::App& app, int& rc);      // in libaosuite_gl.so
-void add_check_command(CLI::App& app, int& rc);       // in libaosuite_gl.so
-void add_bless_command(CLI::App& app, int& rc);       // in libaosuite_gl.so
-void add_report_command(CLI::App& app, int& rc);      // in libaosuite_gl.so
+void add_check_command(CLI::App& app, int& rc);       // in libaosuite_check.so
+void add_bless_command(CLI::App& app, int& rc);       // in libaosuite_check.so
+void add_report_command(CLI::App& app, int& rc);      // in libaosuite_check.so
 void add_viewpoints_command(CLI::App& app, int& rc);  // in libaosuite_gl.so
 void add_pmi_study_command(CLI::App& app, int& rc);   // in libaosuite_gl.so
 void add_error_command(CLI::App& app, int& rc);       // in libaosuite_gl.so

@@ -14,41 +14,52 @@
 
 namespace {
 
-// Commands that need OpenGL live in libaosuite_gl.so beside this binary (cli/gl_main.cpp),
-// loaded on demand, so that `aosuite compare` starts without loading Mesa, LLVM or
-// OpenImageIO. Listed here for dispatch and for --help.
-struct GlCommand {
+// Every command but compare lives in a library beside this binary, loaded on demand, so that
+// `aosuite compare` starts without loading them: the harness (libaosuite_check.so, no GL) and
+// the AO bench (libaosuite_gl.so: Mesa, LLVM, Embree, assimp). Listed here for dispatch and
+// for --help.
+struct LibraryCommand {
   const char* name;
   const char* help;
+  const char* library;
 };
-constexpr std::array kGlCommands{
-    GlCommand{"render", "Render a scene view with one AO technique"},
-    GlCommand{"scenes", "List built-in scenes and their views, or check scene files"},
-    GlCommand{"check", "Render a suite and gate each case against its golden (see check --help)"},
-    GlCommand{"bless", "Accept current renders of a suite as its goldens"},
-    GlCommand{"report", "Merge shard reports (report merge --out DIR SHARD...)"},
-    GlCommand{"viewpoints", "PMI viewpoint selection: best/worst views, VMI and PMI(v) per view"},
-    GlCommand{"pmi-study", "PMI resolution x viewpoints study: time, agreement with ray tracing"},
-    GlCommand{"error", "Measure a technique's AO against a ray-traced reference"},
-    GlCommand{"sweep",
-              "Time and error of each technique over a samples x radius x resolution grid"},
-    GlCommand{"gl-info", "List the OpenGL backends and devices this machine can render with"},
+constexpr const char* kHarness = "libaosuite_check.so";
+constexpr const char* kBench = "libaosuite_gl.so";
+constexpr std::array kLibraryCommands{
+    LibraryCommand{"check", "Gate a suite's or a folder's images against goldens (check --help)",
+                   kHarness},
+    LibraryCommand{"bless", "Accept a suite's or a folder's current images as its goldens",
+                   kHarness},
+    LibraryCommand{"report", "Merge shard reports (report merge --out DIR SHARD...)", kHarness},
+    LibraryCommand{"render", "Render a scene view with one AO technique", kBench},
+    LibraryCommand{"scenes", "List built-in scenes and their views, or check scene files", kBench},
+    LibraryCommand{"viewpoints",
+                   "PMI viewpoint selection: best/worst views, VMI and PMI(v) per view", kBench},
+    LibraryCommand{"pmi-study",
+                   "PMI resolution x viewpoints study: time, agreement with ray tracing", kBench},
+    LibraryCommand{"error", "Measure a technique's AO against a ray-traced reference", kBench},
+    LibraryCommand{"sweep",
+                   "Time and error of each technique over a samples x radius x resolution grid",
+                   kBench},
+    LibraryCommand{"gl-info", "List the OpenGL backends and devices this machine can render with",
+                   kBench},
 };
 
-bool is_gl_command(const char* name) {
-  for (const GlCommand& c : kGlCommands) {
-    if (std::strcmp(name, c.name) == 0) return true;
+const LibraryCommand* library_command(const char* name) {
+  for (const LibraryCommand& c : kLibraryCommands) {
+    if (std::strcmp(name, c.name) == 0) return &c;
   }
-  return false;
+  return nullptr;
 }
 
-int run_gl_command(int argc, char** argv) {
+int run_library_command(const LibraryCommand& command, int argc, char** argv) {
   aosuite::reexec_with_huge_page_malloc(argv);  // see there: ~20 % off a render process
+  const bool harness = command.library == kHarness;
   std::string error;
-  auto* entry =
-      aosuite::sibling_symbol<int(int, char**)>("libaosuite_gl.so", "aosuite_gl_main", error);
+  auto* entry = aosuite::sibling_symbol<int(int, char**)>(
+      command.library, harness ? "aosuite_check_main" : "aosuite_gl_main", error);
   if (!entry) {
-    fmt::print(stderr, "aosuite: cannot load the OpenGL commands: {}\n", error);
+    fmt::print(stderr, "aosuite: cannot load the {} command: {}\n", command.name, error);
     return aosuite::cli::kExitError;
   }
   return entry(argc, argv);
@@ -56,7 +67,7 @@ int run_gl_command(int argc, char** argv) {
 
 std::string command_list() {
   std::string out = "compare";
-  for (const GlCommand& c : kGlCommands) out += std::string(", ") + c.name;
+  for (const LibraryCommand& c : kLibraryCommands) out += std::string(", ") + c.name;
   return out;
 }
 
@@ -66,7 +77,10 @@ int main(int argc, char** argv) {
   // A write over the file size limit (ulimit -f) fails with EFBIG and a message naming the file,
   // instead of the signal ending the process without a word.
   std::signal(SIGXFSZ, SIG_IGN);
-  if (argc > 1 && is_gl_command(argv[1])) return run_gl_command(argc, argv);
+  if (argc > 1) {
+    if (const LibraryCommand* c = library_command(argv[1]))
+      return run_library_command(*c, argc, argv);
+  }
   if (argc > 1 && argv[1][0] != '-' && std::strcmp(argv[1], "compare") != 0) {
     return aosuite::cli::usage_error(
         nullptr, fmt::format("unknown command '{}' (commands: {}; aosuite --help)", argv[1],
@@ -77,8 +91,9 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", "aosuite 0.1.0");
   int rc = aosuite::cli::kExitSame;
   aosuite::cli::add_compare_command(app, rc);
-  // Listed for --help; run_gl_command handles them before parsing.
-  for (const GlCommand& c : kGlCommands) app.add_subcommand(c.name, c.help)->allow_extras();
+  // Listed for --help; run_library_command handles them before parsing.
+  for (const LibraryCommand& c : kLibraryCommands)
+    app.add_subcommand(c.name, c.help)->allow_extras();
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

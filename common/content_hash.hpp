@@ -8,7 +8,6 @@
 #include <cstdint>
 #include <filesystem>
 #include <memory>
-#include <opencv2/core.hpp>
 #include <span>
 #include <string>
 #include <string_view>
@@ -33,11 +32,6 @@ class ContentHash {
   requires std::is_trivially_copyable_v<T> ContentHash& add(const T& v) {
     XXH3_64bits_update(state_.get(), &v, sizeof v);
     return *this;
-  }
-  ContentHash& add(const cv::Mat& m) {
-    add(m.rows).add(m.cols).add(m.type());
-    const cv::Mat c = m.isContinuous() ? m : m.clone();
-    return add(std::span<const unsigned char>(c.data, c.total() * c.elemSize()));
   }
   // The file's name and bytes; throws FileError if it cannot be read.
   ContentHash& add_file(const std::filesystem::path& p) {

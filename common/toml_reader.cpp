@@ -20,6 +20,10 @@ void TomlReader::fail(const toml::source_region& at, std::string_view why) const
 
 void TomlReader::only_keys(const toml::table& t,
                            std::initializer_list<std::string_view> known) const {
+  only_keys(t, std::span<const std::string_view>(known.begin(), known.size()));
+}
+
+void TomlReader::only_keys(const toml::table& t, std::span<const std::string_view> known) const {
   for (const auto& [key, value] : t) {
     if (std::find(known.begin(), known.end(), key.str()) != known.end()) continue;
     std::string list;

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <glm/vec3.hpp>
 #include <initializer_list>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -23,6 +24,7 @@ class TomlReader {
 
   // Refuses any key of `t` not in `known`, listing the known ones.
   void only_keys(const toml::table& t, std::initializer_list<std::string_view> known) const;
+  void only_keys(const toml::table& t, std::span<const std::string_view> known) const;
   const toml::node& required(const toml::table& t, std::string_view key) const;
 
   std::string string(const toml::node& n, std::string_view what) const;

@@ -2,13 +2,15 @@
 // ("file:line:col: reason"; the CLI escapes it), or expanded into cases whose ids are safe
 // folder names. Beside the suite lie a scene file (scene.toml, with its mesh tri.obj) and a
 // mask image (mask.png) that the suite may name.
+#include "ao/scene_cases.hpp"
 #include "fuzz/fuzz_util.hpp"
-#include "harness/suite.hpp"
+#include "harness/suite_file.hpp"
 
 namespace fuzz = aosuite::fuzz;
 namespace hs = aosuite::harness;
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
+  aosuite::ao::register_scene_cases();  // scene cases too, as `aosuite check` reads them
   fuzz::write_file(fuzz::scratch() / "tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
   fuzz::write_file(fuzz::scratch() / "scene.toml",
                    "[[meshes]]\nfile = \"tri.obj\"\n\n[[views]]\nname = \"v\"\n"

@@ -1,55 +1,13 @@
 #include "harness/case_hash.hpp"
 
-#include <dlfcn.h>
-#include <fmt/format.h>
-
 #include <span>
 
 #include "common/content_hash.hpp"
-#include "renderer/params.hpp"
-#include "renderer/passes/shader_library.hpp"
 
 namespace aosuite::harness {
-namespace {
-
 namespace fs = std::filesystem;
 
 using Hasher = ContentHash;
-
-// The build of the code that renders: a rebuilt renderer invalidates every cached render.
-const std::string& build_hash() {
-  static const std::string hash = [] {
-    Dl_info info{};
-    if (!dladdr(reinterpret_cast<const void*>(&build_hash), &info) || !info.dli_fname)
-      return std::string("unknown");
-    return Hasher().add_file(info.dli_fname).hex();
-  }();
-  return hash;
-}
-
-}  // namespace
-
-std::string input_hash(const Case& c, const std::string& gl_description) {
-  Hasher h;
-  h.add(build_hash()).add(gl_description);
-  for (std::string_view name : renderer::shader_names())
-    h.add(name).add(renderer::shader_text(name));
-  for (const renderer::Mesh& m : c.scene->meshes) {
-    h.add(std::span(m.positions))
-        .add(std::span(m.normals))
-        .add(std::span(m.triangles))
-        .add(m.colour)
-        .add(m.ground);
-  }
-  for (const renderer::View& v : c.scene->views) {
-    h.add(v.name).add(v.eye).add(v.target).add(v.up).add(v.fovy_degrees).add(v.near);
-  }
-  h.add(c.view).add(c.technique).add(c.width).add(c.height);
-  // Every parameter, whether this technique reads it or not: a stale render is never reused.
-  for (const renderer::ParamSpec& spec : renderer::param_specs())
-    h.add(spec.key).add(renderer::param_text(spec, c.params));
-  return h.hex();
-}
 
 std::string image_input_hash(const Case& c) {
   const ImageSource& src = *c.source;

@@ -9,11 +9,6 @@
 
 namespace aosuite::harness {
 
-// Everything a render depends on: the renderer's build (the bytes of the library holding this
-// code), every shader's text as the renderer will read it, the scene's geometry, colours and
-// views, the view, technique, parameters, size and the GL implementation.
-std::string input_hash(const Case& c, const std::string& gl_description);
-
 // What an image case's images depend on: its command (before {out} is filled in), fields and
 // params, and the bytes of the files it declares as inputs; for files on disk, their bytes.
 std::string image_input_hash(const Case& c);

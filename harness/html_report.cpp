@@ -8,9 +8,11 @@
 #include <cmath>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <string_view>
 
 #include "compare/image_io.hpp"
+#include "harness/case_kind.hpp"
 #include "harness/escape.hpp"
 
 namespace aosuite::harness {
@@ -183,53 +185,6 @@ std::string margin(const CaseResult& c) {
   return std::isnan(m) ? "" : fmt::format("{:+.4f}", m);
 }
 
-// The thesis's Tables 11-14: per technique, how much of the image AO changes.
-std::string ao_effect_table(const RunResults& run) {
-  std::map<std::string, std::pair<std::vector<double>, std::vector<double>>> by;
-  for (const CaseResult& c : run.cases) {
-    if (c.status == Status::kError || c.kind != "render") continue;
-    by[c.technique].first.push_back(c.ao_effect_less);
-    by[c.technique].second.push_back(c.ao_effect_nothing);
-  }
-  auto mean = [](const std::vector<double>& v) {
-    double s = 0;
-    for (double x : v) s += x;
-    return v.empty() ? 0 : s / static_cast<double>(v.size());
-  };
-  std::string h =
-      "<table><tr><th>technique</th><th>cases</th><th>ignoreLess mismatch %</th>"
-      "<th>ignoreNothing mismatch %</th></tr>\n";
-  for (const auto& [t, v] : by) {
-    h += fmt::format(
-        "<tr><td>{}</td><td class=num>{}</td><td class=num>{:.2f}</td>"
-        "<td class=num>{:.2f}</td></tr>\n",
-        escape_markup(t), v.first.size(), mean(v.first), mean(v.second));
-  }
-  return h + "</table>\n";
-}
-
-// The latest `aosuite sweep` beside this report (its default output, reports/sweep, next to
-// reports/<suite>): linked, not embedded, since it is a separate run with its own date.
-std::string sweep_link(const fs::path& report_dir) {
-  const fs::path sweep = report_dir / ".." / "sweep";
-  std::error_code ec;
-  const auto when = fs::last_write_time(sweep / "sweep.md", ec);
-  if (ec) {
-    return "<p>No sweep next to this report yet: <code>aosuite sweep suites/sweep_ci.toml --out "
-           "reports/sweep</code> measures each technique's run time against its error.</p>\n";
-  }
-  const auto age =
-      std::chrono::duration_cast<std::chrono::hours>(fs::file_time_type::clock::now() - when);
-  std::string links =
-      "<a href=\"../sweep/sweep.md\">table</a>, <a href=\"../sweep/sweep.csv\">CSV</a>";
-  for (const fs::directory_entry& e : fs::directory_iterator(sweep, ec)) {
-    if (e.path().extension() != ".svg") continue;
-    const std::string name = escape_markup(e.path().filename().string());
-    links += fmt::format(", <a href=\"../sweep/{0}\">{0}</a>", name);
-  }
-  return fmt::format("<p>Latest sweep ({} h old): {}.</p>\n", age.count(), links);
-}
-
 }  // namespace
 
 void write_html_report(const RunResults& run, const fs::path& report_dir,
@@ -292,19 +247,14 @@ void write_html_report(const RunResults& run, const fs::path& report_dir,
       thumb = url(thumbnail(cases_dir, rel));
     }
     nlohmann::json about = nlohmann::json::object();
-    if (c.kind == "render") {
-      about["scene / view / technique"] = c.scene + " / " + c.view + " / " + c.technique;
-      about["AO effect (ignoreLess / ignoreNothing)"] =
-          fmt::format("{:.2f}% / {:.2f}%", c.ao_effect_less, c.ao_effect_nothing);
-    }
+    for (const auto& [label, value] : c.labels) about[printable(label)] = printable(value);
     if (c.width > 0) about["size"] = fmt::format("{}x{}", c.width, c.height);
     about["tolerance"] = tolerance_text(c.tolerance);
     nlohmann::json params = nlohmann::json::object();
     for (const auto& [k, v] : c.params)
       params[k] = v.is_string() ? printable(v.get<std::string>()) : v.dump();
     nlohmann::json times = nlohmann::json::object();
-    for (const renderer::PassTime& t : c.times)
-      times[t.pass] = fmt::format("GPU {:.3f} ms", t.gpu_ms);
+    for (const Timing& t : c.times) times[printable(t.stage)] = fmt::format("{:.3f} ms", t.ms);
     data.push_back({{"id", c.id},
                     {"status", status_name(c.status)},
                     {"kind", c.kind},
@@ -334,10 +284,6 @@ void write_html_report(const RunResults& run, const fs::path& report_dir,
   }
   const nlohmann::json meta = {{"approve", printable(run.approve_prefix)},
                                {"approve_failed", printable(approve_failed)}};
-  // The AO tables and the sweep belong to suites that render scenes, not to image-only ones.
-  bool renders = run.cases.empty();
-  for (const CaseResult& c : run.cases) renders = renders || c.kind == "render";
-
   std::string body = fmt::format(
       "<header><h1>aosuite: {}</h1>\n<p>{} cases: <span class=PASS>{} passed</span>, <span "
       "class=FAIL>{} failed</span>, <span class=NEW>{} new</span>, <span class=ERROR>{} "
@@ -345,9 +291,9 @@ void write_html_report(const RunResults& run, const fs::path& report_dir,
       escape_markup(run.suite), run.cases.size(), n.pass, n.fail, n.fresh, n.error,
       n.flaky ? fmt::format(", <span class=FLAKY>{} flaky</span>", n.flaky) : "",
       escape_markup(run.suite_file), run.shard.empty() ? "" : ", shard " + escape_markup(run.shard),
-      run.gl.empty() ? ""
-                     : " GL: " + escape_markup(run.gl) + " (platform <code>" +
-                           escape_markup(run.platform) + "</code>).");
+      run.environment.empty() ? ""
+                              : " Made on " + escape_markup(run.environment) + " (platform <code>" +
+                                    escape_markup(run.platform) + "</code>).");
   body += R"(<nav id=bar><span id=filters>)";
   for (const char* st : {"ERROR", "FAIL", "NEW", "FLAKY", "PASS"}) {
     int count_of = 0;
@@ -369,10 +315,12 @@ void write_html_report(const RunResults& run, const fs::path& report_dir,
       "%</th><th>allowed %</th><th>margin</th><th>max Δ</th><th>time s</th><th>image</th>"
       "</tr></thead><tbody></tbody></table>\n<p id=more></p><noscript>This report needs "
       "JavaScript; results.json holds the same.</noscript>\n";
-  if (renders) {
-    body += "<h2>How much AO changes the image (thesis Tables 11–14)</h2>\n" + ao_effect_table(run);
-    body += "<h2>Run time against error</h2>\n" + sweep_link(report_dir);
-  }
+  // Each registered kind with cases here adds its own section (the AO bench: its tables).
+  std::set<std::string> kinds;
+  for (const CaseResult& c : run.cases)
+    if (!is_image_kind(c.kind)) kinds.insert(c.kind);
+  for (const std::string& name : kinds)
+    if (const CaseKind* kind = find_kind(name)) body += kind->report_section(run, report_dir);
   body += "</main><aside id=detail hidden></aside>\n";
   const std::string page = fmt::format(
       "<!doctype html>\n<html lang=en><head><meta charset=utf-8><title>aosuite: {}</title>"

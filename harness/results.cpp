@@ -76,9 +76,9 @@ ImageVerdict verdict_from_json(const json& j) {
 json to_json(const CaseResult& c) {
   json images = json::array(), times = json::array(), ignore = json::array();
   for (const ImageVerdict& v : c.images) images.push_back(to_json(v));
-  for (const renderer::PassTime& t : c.times) {
-    times.push_back({{"pass", t.pass}, {"gpu_ms", t.gpu_ms}});
-  }
+  for (const Timing& t : c.times) times.push_back({{"stage", t.stage}, {"ms", t.ms}});
+  json labels = json::array();
+  for (const auto& [k, v] : c.labels) labels.push_back({printable(k), printable(v)});
   for (const resemble::Box& b : c.tolerance.ignore)
     ignore.push_back({b.left, b.top, b.right, b.bottom});
   const auto gates_of = [](const std::vector<metric::Gates>& list) {
@@ -99,9 +99,7 @@ json to_json(const CaseResult& c) {
           {"exit_status", c.exit_status},
           {"attempts", c.attempts},
           {"command_stderr", printable_lines(c.command_stderr)},
-          {"scene", c.scene},
-          {"view", c.view},
-          {"technique", c.technique},
+          {"labels", labels},
           {"width", c.width},
           {"height", c.height},
           {"params", params},
@@ -120,8 +118,7 @@ json to_json(const CaseResult& c) {
           {"images", images},
           {"files", c.files},
           {"times", times},
-          {"ao_effect_less", c.ao_effect_less},
-          {"ao_effect_nothing", c.ao_effect_nothing},
+          {"figures", c.figures},
           {"input_hash", c.input_hash},
           {"judge_hash", c.judge_hash},
           {"image_hashes", c.image_hashes},
@@ -132,13 +129,13 @@ json to_json(const CaseResult& c) {
 
 CaseResult case_from_json(const json& j) {
   CaseResult c;
-  c.id = j.at("id"), c.scene = j.at("scene"), c.view = j.at("view");
+  c.id = j.at("id");
   if (!valid_name(c.id))
     throw std::runtime_error("case id '" + printable(c.id) + "' is not a name");
-  c.technique = j.at("technique");
+  for (const json& l : j.at("labels")) c.labels.emplace_back(l.at(0), l.at(1));
   c.width = int_at(j, "width"), c.height = int_at(j, "height");
   for (const auto& [k, v] : j.at("params").items()) c.params[k] = v;
-  c.kind = j.value("kind", std::string("render"));
+  c.kind = j.at("kind");
   c.source = j.value("source", std::string());
   c.exit_status = int_or(j, "exit_status", -1);
   c.attempts = int_or(j, "attempts", 1);
@@ -176,8 +173,8 @@ CaseResult case_from_json(const json& j) {
                                "' is not inside its case folder");
     }
   }
-  for (const json& t2 : j.at("times")) c.times.push_back({t2.at("pass"), t2.at("gpu_ms")});
-  c.ao_effect_less = j.at("ao_effect_less"), c.ao_effect_nothing = j.at("ao_effect_nothing");
+  for (const json& t2 : j.at("times")) c.times.push_back({t2.at("stage"), t2.at("ms")});
+  c.figures = j.at("figures").get<std::map<std::string, double>>();
   c.input_hash = j.at("input_hash"), c.judge_hash = j.at("judge_hash");
   // Absent in older results: then nothing is reused, which only costs a render.
   c.image_hashes = j.value("image_hashes", std::map<std::string, std::string>{});
@@ -191,7 +188,7 @@ json to_json(const RunResults& r) {
   for (const CaseResult& c : r.cases) cases.push_back(to_json(c));
   return {{"suite", r.suite},
           {"suite_file", printable(r.suite_file)},
-          {"gl", printable(r.gl)},
+          {"environment", printable(r.environment)},
           {"platform", r.platform},
           {"bless_prefix", printable(r.bless_prefix)},
           {"shard", r.shard},
@@ -201,7 +198,7 @@ json to_json(const RunResults& r) {
 
 RunResults run_from_json(const json& j) {
   RunResults r;
-  r.suite = j.at("suite"), r.suite_file = j.at("suite_file"), r.gl = j.at("gl");
+  r.suite = j.at("suite"), r.suite_file = j.at("suite_file"), r.environment = j.at("environment");
   r.platform = j.at("platform"), r.shard = j.at("shard");
   r.bless_prefix = j.value("bless_prefix", std::string());
   r.approve_prefix = j.value("approve_prefix", std::string());
@@ -209,6 +206,15 @@ RunResults run_from_json(const json& j) {
     throw std::runtime_error("suite '" + printable(r.suite) + "' is not a name");
   for (const json& c : j.at("cases")) r.cases.push_back(case_from_json(c));
   return r;
+}
+
+void keep_in_report(const fs::path& file, const std::vector<unsigned char>& bytes) {
+  std::error_code ec;
+  if (fs::is_regular_file(fs::symlink_status(file, ec)) &&
+      fs::file_size(file, ec) == bytes.size() && !ec && read_file(file) == bytes) {
+    return;
+  }
+  write_report_file(file, bytes);
 }
 
 RunResults read_results(const fs::path& dir) {

@@ -10,15 +10,22 @@
 #include <vector>
 
 #include "harness/judge.hpp"
-#include "renderer/frame.hpp"
 
 namespace aosuite::harness {
 
+// How long one stage of making a case's images took (a render pass's GPU time).
+struct Timing {
+  std::string stage;
+  double ms = 0;
+};
+
 struct CaseResult {
-  std::string id, scene, view, technique;
-  // "render" (a scene), "command" (files a command wrote), "files" (files on disk), "folder"
-  // (folder mode: one image paired by relative path).
-  std::string kind = "render";
+  std::string id;
+  // "command" (files a command wrote), "files" (files on disk), "folder" (folder mode: one
+  // image paired by relative path), or a registered kind's name ("render": a scene).
+  std::string kind;
+  // What its kind says the case is, in order (scene, view, technique): the report shows them.
+  std::vector<std::pair<std::string, std::string>> labels;
   // What an image case shows: its command line (shell-quoted), its files, or folder mode's
   // relative path.
   std::string source;
@@ -32,10 +39,10 @@ struct CaseResult {
   std::vector<ImageVerdict> images;
   // Files in the report folder, by role: no_ao, with_ao, ao_only, golden:<image>, diff:<image>.
   std::map<std::string, std::string> files;
-  std::vector<renderer::PassTime> times;
-  // Resemble ignoreLess / ignoreNothing mismatch between the no-AO and the AO image
-  // (the thesis's Tables 11-14): how much of the picture AO changes.
-  double ao_effect_less = 0, ao_effect_nothing = 0;
+  std::vector<Timing> times;
+  // Numbers its kind measured beside the verdict, for its report section (the AO bench: how
+  // much of the picture AO changes, the thesis's Tables 11-14).
+  std::map<std::string, double> figures;
   std::string input_hash, judge_hash;  // what the render and the verdict depended on
   // The content hash of each image kept in the case's report folder, as this run made or found
   // it: a later run reuses those files only while they still hold exactly these bytes (a bless,
@@ -51,7 +58,8 @@ struct CaseResult {
 };
 
 struct RunResults {
-  std::string suite, suite_file, gl, platform;
+  std::string suite, suite_file, platform;
+  std::string environment;  // what made the images (the GL implementation), if a kind says
   // "aosuite bless SUITE [--goldens DIR]", shell-quoted: what the printed bless commands start
   // with.
   std::string bless_prefix;
@@ -74,6 +82,9 @@ RunResults run_from_json(const nlohmann::json& j);
 // Writes a report file under a temporary name and renames it into place: never seen half
 // written, but not synced (a report is rebuilt by the next run; goldens are synced).
 void write_report_file(const std::filesystem::path& path, std::span<const unsigned char> bytes);
+// write_report_file unless the file there already holds `bytes`: an unchanged image costs no
+// write (a rename over a file can wait for the disk).
+void keep_in_report(const std::filesystem::path& file, const std::vector<unsigned char>& bytes);
 
 // Reads `dir`/results.json; throws naming the file if it is missing or malformed.
 RunResults read_results(const std::filesystem::path& dir);

@@ -15,18 +15,15 @@
 #include "compare/exr_file.hpp"
 #include "compare/image_file.hpp"
 #include "compare/image_io.hpp"
-#include "compare/opencv.hpp"
 #include "harness/case_hash.hpp"
+#include "harness/case_kind.hpp"
 #include "harness/command.hpp"
 #include "harness/escape.hpp"
 #include "harness/goldens.hpp"
-#include "renderer/params.hpp"
-#include "renderer/renderer.hpp"
 
 namespace aosuite::harness {
 
 namespace fs = std::filesystem;
-namespace rd = aosuite::renderer;
 
 void set_shard(Selection& s, const std::string& text) {
   std::string spec = text;
@@ -99,31 +96,19 @@ std::string bless_command(std::string_view prefix, const std::vector<std::string
 
 namespace {
 
-// A case's images as PNG bytes and pixels, fresh or reused from the report folder.
-struct Rendered {
-  std::map<std::string, std::vector<unsigned char>> png;
-  std::map<std::string, RgbaImage> rgba;
-};
+// A case's images, fresh or reused from the report folder.
+using Rendered = CaseImages;
 
-// A GL context, made when the first case that renders a scene needs one.
-struct Gl {
-  std::unique_ptr<rd::Renderer> renderer;
-  rd::Renderer& get() {
-    if (!renderer) renderer = std::make_unique<rd::Renderer>();
-    return *renderer;
+// One thread's makers, one per kind, each made when a case of its kind first needs it (a GL
+// context costs time and memory: an image-only run makes none).
+struct Makers {
+  std::map<const CaseKind*, std::unique_ptr<Maker>> by_kind;
+  Maker& get(const CaseKind* kind) {
+    std::unique_ptr<Maker>& m = by_kind[kind];
+    if (!m) m = kind->maker(nullptr);
+    return *m;
   }
 };
-
-// Writes `bytes` into the report unless the file there already holds them: an unchanged image
-// costs no write (a rename over a file can wait for the disk).
-void keep_in_report(const fs::path& file, const std::vector<unsigned char>& bytes) {
-  std::error_code ec;
-  if (fs::is_regular_file(fs::symlink_status(file, ec)) &&
-      fs::file_size(file, ec) == bytes.size() && !ec && read_file(file) == bytes) {
-    return;
-  }
-  write_report_file(file, bytes);
-}
 
 // The report folder's cache.json: the last result of every case run there (any selection), by
 // id: what tells an unchanged case. One file, read once and written once per run (thousands of
@@ -158,59 +143,15 @@ void save_cache(const fs::path& report_dir, Cache cache, const std::vector<CaseR
                     {reinterpret_cast<const unsigned char*>(text.data()), text.size()});
 }
 
-double raw_mismatch(const cv::Mat& a, const cv::Mat& b, resemble::Mode mode) {
-  resemble::Options o;
-  o.modes = {mode};
-  return resemble::compare(a, b, o).raw_mismatch_percentage;
-}
-
 // The file type of a case's image: an image case's own (".png", folder mode's ".exr"), else
-// the render's (ao_float is EXR).
+// what its kind says.
 std::string ext_of(const Case& c, std::string_view image) {
-  return c.source ? c.source->ext : render_ext(image);
+  return c.source ? c.source->ext : c.made->ext(image);
 }
 
-bool gates_ao_float(const Case& c) { return std::ranges::count(c.images, "ao_float") > 0; }
-
-// The images a case keeps in its report folder: the three PNG renders (and the float AO term
-// when it is gated), or an image case's own.
+// The images a case keeps in its report folder: an image case's own, else its kind's.
 std::vector<std::string> kept_images(const Case& c) {
-  if (c.source) return c.images;
-  std::vector<std::string> out{"no_ao", "with_ao", "ao_only"};
-  if (gates_ao_float(c)) out.push_back("ao_float");
-  if (c.tolerance.foreground_only) out.push_back("foreground");
-  return out;
-}
-
-// Renders the case into `r`, writing its images to `case_dir`; fills times and the AO effect.
-void render_case(rd::Renderer& renderer, const Case& c, const fs::path& case_dir, CaseResult& r,
-                 Rendered& out) {
-  rd::RenderSettings s;
-  s.width = c.width, s.height = c.height, s.technique = c.technique, s.params = c.params;
-  s.outputs = {.no_ao = true, .with_ao = true, .ao_only = true, .ao_float = gates_ao_float(c)};
-  rd::Images img = renderer.render(*c.scene, rd::find_view(*c.scene, c.view), s);
-  fs::create_directories(case_dir);
-  for (const auto& [name, mat] :
-       {std::pair{"no_ao", &img.no_ao}, {"with_ao", &img.with_ao}, {"ao_only", &img.ao_only}}) {
-    out.rgba[name] = copy_of(view_of(*mat));
-    out.png[name] = encode_png_rgba8(out.rgba[name], 6);
-    keep_in_report(case_dir / (std::string(name) + ".png"), out.png[name]);
-  }
-  if (c.tolerance.foreground_only) {
-    // Geometry where the G-buffer has depth: white; sky black. Kept, so a reused render has it.
-    cv::Mat mask(img.depth.size(), CV_8UC4, cv::Scalar(0, 0, 0, 255));
-    mask.setTo(cv::Scalar(255, 255, 255, 255), img.depth > 0);
-    out.png["foreground"] = encode_png_rgba8(mask, 6);
-    keep_in_report(case_dir / "foreground.png", out.png["foreground"]);
-  }
-  if (s.outputs.ao_float) {
-    const fs::path exr = case_dir / "ao_float.exr";
-    write_exr(exr, img.ao.cols, img.ao.rows, img.ao.ptr<float>());
-    out.png["ao_float"] = read_file(exr);
-  }
-  r.times = img.times;
-  r.ao_effect_less = raw_mismatch(img.no_ao, img.with_ao, resemble::Mode::kLess);
-  r.ao_effect_nothing = raw_mismatch(img.no_ao, img.with_ao, resemble::Mode::kNothing);
+  return c.source ? c.images : c.made->kept_images(c);
 }
 
 bool is_shell(const std::string& program) {
@@ -269,9 +210,9 @@ void produce_images(const Case& c, const fs::path& case_dir, CaseResult& r, Rend
                                                    : "the command did not write " + src.outputs[i] +
                                                          " (" + from[i].string() + ")");
     }
-    out.png[name] = read_file(from[i], kMaxFileBytes);
-    if (src.ext == ".png") check_png(out.png[name], from[i].string());
-    keep_in_report(case_dir / (name + src.ext), out.png[name]);
+    out.bytes[name] = read_file(from[i], kMaxFileBytes);
+    if (src.ext == ".png") check_png(out.bytes[name], from[i].string());
+    keep_in_report(case_dir / (name + src.ext), out.bytes[name]);
   }
 }
 
@@ -290,12 +231,11 @@ bool reuse_render(const Case& c, const CaseResult& prev, const fs::path& case_di
       return false;
   }
   for (const std::string& name : kept_images(c)) {
-    out.png[name] = read_file(case_dir / (name + ext_of(c, name)), kMaxFileBytes);
-    if (bytes_hash(out.png[name]) != prev.image_hashes.at(name)) return false;
+    out.bytes[name] = read_file(case_dir / (name + ext_of(c, name)), kMaxFileBytes);
+    if (bytes_hash(out.bytes[name]) != prev.image_hashes.at(name)) return false;
   }
   r.image_hashes = prev.image_hashes;
-  r.times = prev.times;
-  r.ao_effect_less = prev.ao_effect_less, r.ao_effect_nothing = prev.ao_effect_nothing;
+  r.times = prev.times, r.figures = prev.figures;
   r.exit_status = prev.exit_status, r.command_stderr = prev.command_stderr;
   return true;
 }
@@ -306,7 +246,7 @@ const RgbaImage& pixels(Rendered& r, const Case& c, const std::string& name,
                         const fs::path& case_dir) {
   RgbaImage& m = r.rgba[name];
   if (!m.empty()) return m;
-  const std::vector<unsigned char>& bytes = r.png.at(name);
+  const std::vector<unsigned char>& bytes = r.bytes.at(name);
   const std::string ext = ext_of(c, name), file = (case_dir / (name + ext)).string();
   if (ext == ".exr") return m;  // float, whatever the bytes: the metrics (or bytes) judge it
   if (is_png(bytes)) {
@@ -316,19 +256,6 @@ const RgbaImage& pixels(Rendered& r, const Case& c, const std::string& name,
     if (!p.is_float || p.floats.srgb) m = canvas_rgba8(p);
   }
   return m;
-}
-
-// A parameter's value with its type: a number, a name, a list of numbers.
-// Floats go through their shortest text, so 0.012f is 0.012 in JSON, not 0.012000000104...
-nlohmann::json typed(const rd::ParamValue& v) {
-  const auto number = [](float f) { return std::stod(fmt::format("{}", f)); };
-  if (const float* f = std::get_if<float>(&v)) return number(*f);
-  if (const auto* list = std::get_if<std::vector<float>>(&v)) {
-    nlohmann::json out = nlohmann::json::array();
-    for (const float f : *list) out.push_back(number(f));
-    return out;
-  }
-  return std::visit([](const auto& x) { return nlohmann::json(x); }, v);
 }
 
 CaseResult skeleton(const Case& c) {
@@ -350,13 +277,9 @@ CaseResult skeleton(const Case& c) {
     for (const std::string& image : c.images) r.files[image] = c.id + "/" + image + src.ext;
     return r;
   }
-  r.scene = c.scene->name, r.view = c.view;
-  r.technique = std::string(rd::technique_name(c.technique));
+  r.kind = std::string(c.kind->name());
   r.width = c.width, r.height = c.height;
-  for (const rd::ParamSpec& spec : rd::param_specs()) {
-    if (rd::applies(spec, c.technique))
-      r.params[std::string(spec.key)] = typed(rd::param_value(spec, c.params));
-  }
+  c.made->describe(c, r);
   for (const std::string& image : kept_images(c))
     r.files[image] = c.id + "/" + image + ext_of(c, image);
   return r;
@@ -364,11 +287,11 @@ CaseResult skeleton(const Case& c) {
 
 // Renders, runs or reads (or reuses) one case into the report folder: the part check and bless
 // share. Returns the previous result when the images were reused.
-std::optional<CaseResult> prepare(Gl& gl, const std::string& gl_description, const Case& c,
+std::optional<CaseResult> prepare(Makers& makers, const std::string& environment, const Case& c,
                                   const RunOptions& o, const Cache& cache, CaseResult& r,
                                   Rendered& images) {
   const fs::path case_dir = o.report_dir / "cases" / c.id;
-  r.input_hash = c.source ? image_input_hash(c) : input_hash(c, gl_description);
+  r.input_hash = c.source ? image_input_hash(c) : c.made->input_hash(c, environment);
   std::optional<CaseResult> prev;
   if (const auto it = cache.find(c.id); o.reuse && it != cache.end()) prev = it->second;
   if (prev && prev->input_hash == r.input_hash && reuse_render(c, *prev, case_dir, r, images)) {
@@ -378,11 +301,11 @@ std::optional<CaseResult> prepare(Gl& gl, const std::string& gl_description, con
   if (c.source) {
     produce_images(c, case_dir, r, images);
   } else {
-    render_case(gl.get(), c, case_dir, r, images);
+    makers.get(c.kind).make(c, case_dir, r, images);
   }
   r.image_hashes.clear();
   for (const std::string& name : kept_images(c))
-    r.image_hashes[name] = bytes_hash(images.png.at(name));
+    r.image_hashes[name] = bytes_hash(images.bytes.at(name));
   return std::nullopt;
 }
 
@@ -439,8 +362,8 @@ void judge_case(const Suite& suite, const Case& c, const std::string& platform, 
   for (std::size_t i = 0; i < c.images.size(); ++i) {
     const std::string& name = c.images[i];
     const std::string ext = ext_of(c, name);
-    ImageVerdict v = judge(name, images.png.at(name), pixels(images, c, name, case_dir), goldens[i],
-                           c.tolerance, true, counted ? &*counted : nullptr);
+    ImageVerdict v = judge(name, images.bytes.at(name), pixels(images, c, name, case_dir),
+                           goldens[i], c.tolerance, true, counted ? &*counted : nullptr);
     const bool show = v.status == Status::kFail || o.diff_all;
     if (!v.diff.empty() && show) {
       write_png_rgba8(case_dir / ("diff_" + name + ".png"), v.diff);
@@ -488,23 +411,22 @@ void judge_deleted(const Case& c, const RunOptions& o, CaseResult& r) {
   r.images.push_back(std::move(v));
 }
 
-// Runs `work(gl, case, result)` over the cases on `jobs` threads, each with its own GL
-// context (made when a case first needs one); `first` is the main thread's, reused by worker 0.
+// Runs `work(makers, case, result)` over the cases on `jobs` threads, each with its own makers
+// (made when a case first needs one); `first` is the main thread's, reused by worker 0.
 template <typename Work>
 std::vector<CaseResult> for_each_case(const std::vector<const Case*>& cases, const RunOptions& o,
-                                      std::unique_ptr<rd::Renderer> first, Work work) {
+                                      Makers first, Work work) {
   std::vector<CaseResult> results(cases.size());
   std::atomic<std::size_t> next{0};
   std::atomic<int> done{0};
   std::mutex report;
-  auto worker = [&](std::unique_ptr<rd::Renderer> renderer) {
-    Gl gl{std::move(renderer)};
+  auto worker = [&](Makers makers) {
     for (std::size_t i; (i = next++) < cases.size();) {
       const auto t0 = std::chrono::steady_clock::now();
       CaseResult& r = results[i];
       r = skeleton(*cases[i]);
       try {
-        work(gl, *cases[i], r);
+        work(makers, *cases[i], r);
       } catch (const std::exception& e) {
         r.status = Status::kError;
         r.message = e.what();
@@ -516,7 +438,7 @@ std::vector<CaseResult> for_each_case(const std::vector<const Case*>& cases, con
   };
   const int jobs = std::max(1, std::min<int>(o.jobs, static_cast<int>(cases.size())));
   std::vector<std::thread> threads;
-  for (int j = 1; j < jobs; ++j) threads.emplace_back(worker, nullptr);
+  for (int j = 1; j < jobs; ++j) threads.emplace_back(worker, Makers{});
   worker(std::move(first));
   for (std::thread& t : threads) t.join();
   return results;
@@ -542,20 +464,19 @@ std::vector<const Case*> select_some(const Suite& suite, const Selection& s) {
 }
 
 RunResults start(const Suite& suite, const RunOptions& o, const std::vector<const Case*>& cases,
-                 bool may_render, std::unique_ptr<rd::Renderer>& first) {
+                 bool may_render, Makers& first) {
   RunResults run;
   run.suite = suite.name, run.suite_file = suite.file.string();
   run.bless_prefix = bless_prefix(suite);
   run.approve_prefix = run.bless_prefix + " --from-report --report " +
                        shell_quote(o.report_dir.lexically_normal().string());
-  const bool renders = may_render && std::any_of(cases.begin(), cases.end(),
-                                                 [](const Case* c) { return !c->source; });
-  if (renders) {
-    first = std::make_unique<rd::Renderer>();
-    // The backend and device after the driver's own three fields: the report names them, and
-    // platform_key reads the renderer field alone, so goldens match on EGL and OSMesa alike.
-    run.gl = first->gl_description() + " | " + first->gl_source();
-    run.platform = platform_key(run.gl);
+  // The first case of a registered kind makes its maker here: what it says of the machine
+  // (the GL implementation) is in every input hash, and names the platform's goldens.
+  const auto made = std::find_if(cases.begin(), cases.end(), [](const Case* c) { return c->kind; });
+  if (may_render && made != cases.end()) {
+    Environment env;
+    first.by_kind[(*made)->kind] = (*made)->kind->maker(&env);
+    run.environment = env.description, run.platform = env.platform;
   }
   if (const char* p = std::getenv("AOSUITE_PLATFORM"); p && *p) run.platform = p;
   if (!o.platform.empty()) run.platform = o.platform;
@@ -571,8 +492,8 @@ RunResults start(const Suite& suite, const RunOptions& o, const std::vector<cons
 }
 
 // One attempt at a case: images, then the verdict.
-void check_once(const Suite& suite, const std::string& gl, const std::string& platform,
-                const RunOptions& o, const Cache& cache, Gl& renderer, const Case& c,
+void check_once(const Suite& suite, const std::string& environment, const std::string& platform,
+                const RunOptions& o, const Cache& cache, Makers& makers, const Case& c,
                 CaseResult& r) {
   if (c.source && c.source->deleted) {
     r.input_hash = r.judge_hash = "";
@@ -580,7 +501,7 @@ void check_once(const Suite& suite, const std::string& gl, const std::string& pl
     return;
   }
   Rendered images;
-  const auto prev = prepare(renderer, gl, c, o, cache, r, images);
+  const auto prev = prepare(makers, environment, c, o, cache, r, images);
   judge_case(suite, c, platform, o, prev, r, images);
 }
 
@@ -588,17 +509,17 @@ void check_once(const Suite& suite, const std::string& gl, const std::string& pl
 
 RunResults check(const Suite& suite, const RunOptions& o) {
   const std::vector<const Case*> cases = select_some(suite, o.selection);
-  std::unique_ptr<rd::Renderer> first;
+  Makers first;
   RunResults run = start(suite, o, cases, true, first);
-  const std::string gl = run.gl, platform = run.platform;
+  const std::string environment = run.environment, platform = run.platform;
   const Cache cache = load_cache(o.report_dir);
   RunOptions again = o;
   again.reuse = false;
   run.cases =
-      for_each_case(cases, o, std::move(first), [&](Gl& renderer, const Case& c, CaseResult& r) {
+      for_each_case(cases, o, std::move(first), [&](Makers& makers, const Case& c, CaseResult& r) {
         auto attempt = [&](const RunOptions& opts, CaseResult& into) {
           try {
-            check_once(suite, gl, platform, opts, cache, renderer, c, into);
+            check_once(suite, environment, platform, opts, cache, makers, c, into);
           } catch (const std::exception& e) {
             into.status = Status::kError;
             into.message = e.what();
@@ -646,13 +567,13 @@ void write_case_goldens(const Suite& suite, const Case& c, const std::string& pl
   blank_maps.reserve(c.images.size());
   for (const std::string& image : c.images) {
     const fs::path target = bless_target(suite, c, image, platform, tag);
-    writes.emplace_back(target, images.png.at(image));
+    writes.emplace_back(target, images.bytes.at(image));
     written += (written.empty() ? "" : ", ") + writes.back().first.string();
     // Regions need a map beside the golden: a black one (every pixel unpainted) to paint,
     // never over one that exists.
     const fs::path map = region_map(target, image);
     if (!c.tolerance.regions.empty() && !fs::exists(map)) {
-      const ImageSize size = decode_picture(images.png.at(image), target.string()).size();
+      const ImageSize size = decode_picture(images.bytes.at(image), target.string()).size();
       RgbaImage black(size.width, size.height);
       for (std::size_t i = 3; i < black.view().bytes(); i += 4) black.data()[i] = 255;
       blank_maps.push_back(encode_png_rgba8(black, 6));
@@ -724,18 +645,19 @@ RunResults bless(const Suite& suite, const BlessOptions& b) {
     }
   }
   if (cases.empty()) cases = select_some(suite, b.run.selection);
-  std::unique_ptr<rd::Renderer> first;
+  Makers first;
   RunResults run = start(suite, b.run, cases, !from_report, first);
   if (from_report && run.platform.empty()) run.platform = report_platform;
   if (b.platform && run.platform.empty()) {
     throw std::invalid_argument(
         "--platform: no platform key (these cases render no scene): set AOSUITE_PLATFORM");
   }
-  const std::string gl = run.gl, platform = b.platform ? run.platform : std::string();
+  const std::string environment = run.environment;
+  const std::string platform = b.platform ? run.platform : std::string();
   const std::string judge_platform = run.platform;
   const Cache cache = from_report ? Cache() : load_cache(b.run.report_dir);
   run.cases = for_each_case(
-      cases, b.run, std::move(first), [&](Gl& renderer, const Case& c, CaseResult& r) {
+      cases, b.run, std::move(first), [&](Makers& makers, const Case& c, CaseResult& r) {
         const bool deleted = c.source && c.source->deleted;
         Rendered images;
         if (from_report) {
@@ -764,15 +686,15 @@ RunResults bless(const Suite& suite, const BlessOptions& b) {
                 std::error_code ec;
                 if (!fs::is_regular_file(fs::symlink_status(f, ec)))
                   throw FileError(f.string() + ": not a regular file");
-                images.png[image] = read_file(f, kMaxFileBytes);
+                images.bytes[image] = read_file(f, kMaxFileBytes);
                 const auto recorded = it->second.image_hashes.find(image);
                 if (recorded == it->second.image_hashes.end() ||
-                    recorded->second != bytes_hash(images.png[image])) {
+                    recorded->second != bytes_hash(images.bytes[image])) {
                   throw FileError(
                       f.string() +
                       ": not the image the report judged (replaced since; check again)");
                 }
-                if (ext_of(c, image) == ".png") check_png(images.png[image], f.string());
+                if (ext_of(c, image) == ".png") check_png(images.bytes[image], f.string());
               } catch (const std::exception& e) {
                 throw std::runtime_error(std::string("the report's image is unusable: ") +
                                          e.what() + "; its goldens are untouched");
@@ -782,7 +704,7 @@ RunResults bless(const Suite& suite, const BlessOptions& b) {
         } else if (!deleted) {
           std::optional<CaseResult> prev;
           try {
-            prev = prepare(renderer, gl, c, b.run, cache, r, images);
+            prev = prepare(makers, environment, c, b.run, cache, r, images);
           } catch (const std::exception& e) {
             throw std::runtime_error(std::string("could not be rendered: ") + e.what() +
                                      "; its goldens are untouched");

@@ -1,7 +1,9 @@
-// A suite: the cases (scene x view x technique x parameters x resolution) the harness renders
-// and checks against goldens, each with its tolerance. Read from suites/*.toml.
+// A suite: the cases the harness makes (files, a command's outputs, or a registered kind's, such
+// as the AO bench's rendered scenes) and checks against goldens, each with its tolerance. Read
+// from suites/*.toml.
 #pragma once
 
+#include <array>
 #include <filesystem>
 #include <map>
 #include <memory>
@@ -11,8 +13,6 @@
 
 #include "compare/metric.hpp"
 #include "compare/resemble.hpp"
-#include "renderer/scene/scene.hpp"
-#include "renderer/technique.hpp"
 
 namespace aosuite::harness {
 
@@ -32,8 +32,8 @@ struct Tolerance {
   // gives only metric gates. PNG images only.
   bool resemble = true;
   std::vector<metric::Gates> gates;  // e.g. flip = { max_mean = 0.02 }, rmse = { max = 0.01 }
-  // Percentages and means over geometry pixels only (the G-buffer's depth says which), so sky
-  // does not dilute them. Scene cases only.
+  // Percentages and means over the pixels the case's "foreground" image marks (a rendered
+  // scene's geometry), so sky does not dilute them. Only for kinds that keep such an image.
   bool foreground_only = false;
   std::vector<Region> regions;                  // empty: no region map is read
   resemble::Mode mode = resemble::Mode::kLess;  // any Resemble.js mode
@@ -44,16 +44,11 @@ struct Tolerance {
       mask;  // pixels where this PNG is not black (any of R, G, B > 0) are ignored
 };
 
-// The images of a case that can be gated against goldens. ao_float is the AO term as float EXR
-// (ao_float.exr), rendered only for cases that gate it, by metric gates only.
-inline constexpr std::array<const char*, 4> kImageNames{"no_ao", "with_ao", "ao_only", "ao_float"};
 // The region map beside a golden: <image>.regions.png in its folder.
 std::filesystem::path region_map(const std::filesystem::path& golden, std::string_view image);
-// The file type of a render's image: ".exr" for ao_float, else ".png".
-std::string render_ext(std::string_view image);
 
-// Where an image case's images come from instead of a scene: files a command writes, or files
-// already on disk. Each image is named by its file's stem (chart.png -> chart).
+// Where an image case's images come from: files a command writes, or files already on disk.
+// Each image is named by its file's stem (chart.png -> chart).
 struct ImageSource {
   // argv, run without a shell in the case's output folder; {out}, {id}, {name}, {suite_dir},
   // {width}, {height} and {<param>} are replaced (shell-quoted inside `sh -c SCRIPT`).
@@ -83,18 +78,19 @@ struct Case;
 // {height} and each of its params.
 std::map<std::string, std::string> command_placeholders(const Case& k);
 
+class CaseKind;
+class MadeCase;
+
 struct Case {
-  std::string id;  // scene-view-technique-WxH[-name], or an image case's name; names its folder
-  std::shared_ptr<const ImageSource> source;         // set for image cases (no scene then)
-  nlohmann::json values = nlohmann::json::object();  // an image case's params, typed
-  std::shared_ptr<const renderer::Scene> scene;
-  std::string scene_source;  // the built-in name or the scene file, as the suite says it
-  std::string view;
-  renderer::Technique technique{};
-  renderer::AoParams params;
-  std::map<std::string, std::string> param_overrides;  // as written in the suite, for reports
+  std::string id;  // an image case's name, or what its kind makes of it; names its folder
+  // Exactly one of: an image case's files or command, or a registered kind's part of the case.
+  std::shared_ptr<const ImageSource> source;
+  const CaseKind* kind = nullptr;
+  std::shared_ptr<const MadeCase> made;
+  nlohmann::json values = nlohmann::json::object();    // params as typed in the suite
+  std::map<std::string, std::string> param_overrides;  // params as written in the suite
   int width = 0, height = 0;
-  std::vector<std::string> images;  // which of kImageNames are gated (image cases: every image)
+  std::vector<std::string> images;  // the gated images (image cases: every image)
   Tolerance tolerance;
 };
 
@@ -128,10 +124,5 @@ Suite folder_suite(const std::filesystem::path& actual, const std::filesystem::p
 // letters, digits, '-', '_', '.', not starting with '.' (so never "." or ".." nor hidden), at
 // most 200 characters.
 bool valid_name(std::string_view name);
-
-// Parses and expands a suite file. Throws std::runtime_error "file:line:col: reason" for
-// malformed TOML, unknown keys, wrong types, unknown scenes/views/techniques/parameters,
-// impossible sizes and duplicate case ids.
-Suite load_suite(const std::filesystem::path& file);
 
 }  // namespace aosuite::harness

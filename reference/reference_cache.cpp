@@ -55,6 +55,14 @@ void store(const fs::path& path, const cv::Mat& ao) {
   write_file_atomic(path, bytes);
 }
 
+// A matrix's shape, type and pixels (common/content_hash.hpp holds no OpenCV: the harness
+// hashes without it).
+void add_mat(ContentHash& h, const cv::Mat& m) {
+  h.add(m.rows).add(m.cols).add(m.type());
+  const cv::Mat c = m.isContinuous() ? m : m.clone();
+  h.add(std::span<const unsigned char>(c.data, c.total() * c.elemSize()));
+}
+
 }  // namespace
 
 fs::path default_cache_dir() {
@@ -117,7 +125,8 @@ std::string ReferenceCache::key(const renderer::Camera& camera, const cv::Mat& d
   ContentHash h;
   h.add(kReferenceVersion).add(scene_hash_);
   h.add(camera.width).add(camera.height).add(camera.view).add(camera.ndc_to_view);
-  h.add(depth).add(normal);
+  add_mat(h, depth);
+  add_mat(h, normal);
   const float radius = s.variant == Variant::kUnbounded ? 0.0f : s.radius;
   h.add(s.rays).add(radius).add(static_cast<int>(s.variant));
   return h.hex();

@@ -11,6 +11,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <set>
+#include <sstream>
 #include <thread>
 
 #include "compare/opencv.hpp"
@@ -66,6 +67,44 @@ timeout = 20
   }
   test::TempDir dir_;
 };
+
+// The shared objects a run loaded, from the dynamic loader's own record (LD_DEBUG=files lists
+// every object it maps into the process, dlopen()ed ones included).
+std::string loaded_objects(const std::string& err) {
+  std::string out;
+  std::istringstream in(err);
+  for (std::string line; std::getline(in, line);) {
+    const std::size_t at = line.find("file=");
+    if (at != std::string::npos && line.find("generating link map") != std::string::npos)
+      out += line.substr(at + 5, line.find(' ', at) - at - 5) + "\n";
+  }
+  return out;
+}
+
+// The image-regression tool stands on its own: a suite of commands and folder mode map none of
+// the AO bench's libraries (GL, EGL, Embree, assimp, OpenCV, libaosuite_gl.so); a suite with a
+// scene case does, which shows the record is read right.
+TEST_F(ImageCases, AnImageOnlyRunMapsNoRendererLibrary) {
+  ASSERT_EQ(aosuite("bless s/t.toml").rc, 0);
+  for (const char* d : {"actual", "expected"}) fs::create_directories(dir_ / d);
+  fs::copy_file(dir_ / "s" / "red.png", dir_ / "actual" / "x.png");
+  fs::copy_file(dir_ / "s" / "green.png", dir_ / "expected" / "x.png");
+  const std::string bench_libraries[] = {"libGL",     "libEGL",    "libembree",
+                                         "libassimp", "libopencv", "libaosuite_gl.so"};
+  for (const char* run : {"check s/t.toml", "check --actual actual --expected expected",
+                          "bless --actual actual --expected expected"}) {
+    const test::Outcome r = aosuite(run, "LD_DEBUG=files");
+    const std::string loaded = loaded_objects(r.err);
+    EXPECT_NE(loaded.find("libaosuite_check.so"), std::string::npos) << run << "\n" << loaded;
+    for (const std::string& lib : bench_libraries)
+      EXPECT_EQ(loaded.find(lib), std::string::npos) << run << " loaded " << lib << "\n" << loaded;
+  }
+  std::ofstream(dir_ / "s" / "t.toml", std::ios::app)
+      << "\n[[case]]\nscene = \"plane\"\nviews = [\"above\"]\ntechniques = [\"sao\"]\n";
+  const std::string loaded = loaded_objects(aosuite("check s/t.toml", "LD_DEBUG=files").err);
+  for (const char* lib : {"libaosuite_gl.so", "libembree", "libopencv"})
+    EXPECT_NE(loaded.find(lib), std::string::npos) << lib << "\n" << loaded;
+}
 
 // The loop a user runs: NEW, approve, PASS (reused), a changed input FAILs with a report, the
 // report's image is approved without running the command again, PASS.
@@ -379,7 +418,7 @@ outputs = ["x.png"]
 TEST_F(ImageCases, AnErrorIsJudgedAgainOnceItsCauseIsGone) {
   const fs::path build = fs::path(AOSUITE_BIN).parent_path(), bin = dir_ / "bin";
   fs::create_directories(bin);
-  for (const char* f : {"aosuite", "libaosuite_gl.so"}) fs::copy_file(build / f, bin / f);
+  for (const char* f : {"aosuite", "libaosuite_check.so"}) fs::copy_file(build / f, bin / f);
   for (const char* d : {"actual", "expected"}) fs::create_directories(dir_ / d);
   const fs::path exr = fs::path(AOSUITE_SOURCE_DIR) / "fuzz" / "corpus" / "exr";
   fs::copy_file(exr / "rgb_small.exr", dir_ / "actual" / "x.exr");

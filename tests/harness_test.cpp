@@ -8,17 +8,14 @@
 #include <functional>
 
 #include "compare/opencv.hpp"
-#include "harness/case_hash.hpp"
 #include "harness/escape.hpp"
 #include "harness/goldens.hpp"
 #include "harness/html_report.hpp"
 #include "harness/judge.hpp"
 #include "harness/results.hpp"
 #include "harness/runner.hpp"
-#include "harness/suite.hpp"
+#include "harness/suite_file.hpp"
 #include "png_fixture.hpp"
-#include "renderer/params.hpp"
-#include "renderer/scene/scene.hpp"
 
 namespace aosuite::harness {
 namespace {
@@ -45,112 +42,23 @@ class SuiteFile : public ::testing::Test {
   test::TempDir dir_;
 };
 
-// With no `techniques`, a case renders every registered screen-space technique (the registry
-// is the one list: a new technique joins such suites without an edit in the harness).
-TEST_F(SuiteFile, NoTechniquesMeansEveryScreenSpaceTechniqueOfTheRegistry) {
-  const Suite s = load_suite(write("[[case]]\nscene = \"plane\"\nviews = [\"above\"]\n"));
-  std::vector<std::string> rendered;
-  for (const Case& k : s.cases) rendered.emplace_back(renderer::technique_name(k.technique));
-  std::vector<std::string> expected;
-  for (const renderer::TechniqueInfo& t : renderer::techniques())
-    if (t.space == renderer::Space::kScreen) expected.emplace_back(t.name);
-  EXPECT_EQ(rendered, expected);
-  EXPECT_NE(std::find(rendered.begin(), rendered.end(), "gtao"), rendered.end());
-}
-
-TEST_F(SuiteFile, ExpandsScenesViewsAndTechniquesWithDefaultsAndOverrides) {
-  const Suite s = load_suite(write(R"(
-[defaults]
-width = 64
-height = 36
-techniques = ["alchemy", "sao"]
-params = { samples = 4 }
-[defaults.tolerance]
-mode = "nothing"
-max_mismatch_percent = 1.5
-
-[[case]]
-scene = "corner"
-
-[[case]]
-scene = "village"
-views = ["street"]
-techniques = ["mssao"]
-name = "wide"
-width = 80
-params = { radius = 3, level_weights = [1, 0, 0, 0, 0], blur = "none" }
-tolerance = { max_channel_delta = 9 }
-)"));
-  EXPECT_EQ(s.name, "s");
-  EXPECT_EQ(s.goldens, fs::path("goldens") / "s");  // beside reports/, in the working directory
-  ASSERT_EQ(s.cases.size(), 5u);                    // corner: 2 views x 2 techniques; village: 1
-  EXPECT_EQ(s.cases[0].id, "corner-" + s.cases[0].view + "-alchemy-64x36");
-  EXPECT_EQ(s.cases[0].params.samples, 4);
-  EXPECT_EQ(s.cases[0].params.radius,
-            renderer::default_params(renderer::Technique::kAlchemy).radius);
-  EXPECT_EQ(s.cases[1].technique, renderer::Technique::kSao);
-  const Case& v = s.cases[4];
-  EXPECT_EQ(v.id, "village-street-mssao-80x36-wide");
-  EXPECT_EQ(v.params.samples, 4);
-  EXPECT_EQ(v.params.radius, 3);
-  EXPECT_EQ(v.params.mssao.level_weights[1], 0);
-  EXPECT_EQ(v.params.blur, renderer::Blur::kNone);
-  EXPECT_EQ(v.tolerance.mode, resemble::Mode::kNothing);  // defaults kept where not overridden
-  EXPECT_EQ(v.tolerance.max_mismatch_percent, 1.5);
-  EXPECT_EQ(v.tolerance.max_channel_delta, 9);
-  EXPECT_EQ(v.images, std::vector<std::string>{"with_ao"});
-}
-
-TEST_F(SuiteFile, MalformedSuitesNameFileLineAndReason) {
-  const std::string file = (dir_ / "suites" / "s.toml").string();
-  struct Bad {
-    std::string text, line, reason;
-  };
-  const std::vector<Bad> bad = {
-      {"[[case]]\nscene = \"plane\"\nwidth = = 3\n", ":3:", ""},
-      {"[[case]]\nscene = \"plane\"\ncolour = 3\n", ":3:", "unknown key 'colour'"},
-      {"[[case]]\nscene = \"atlantis\"\n", ":2:", "unknown scene 'atlantis'"},
-      {"[[case]]\nscene = \"plane\"\nviews = [\"nope\"]\n", ":3:", "no view 'nope'"},
-      {"[[case]]\nscene = \"plane\"\ntechniques = [\"hbao\"]\n", ":3:", "unknown technique"},
-      {"[[case]]\nscene = \"plane\"\nparams = { radius = \"big\" }\n", ":3:", "radius=big"},
-      {"[[case]]\nscene = \"plane\"\nparams = { spin = 1 }\n", ":3:", "unknown parameter 'spin'"},
-      {"[[case]]\nscene = \"plane\"\nwidth = 0\n", ":3:", "width must be 1..16384"},
-      {"[[case]]\nscene = \"plane\"\n[[case]]\nscene = \"plane\"\n", ":3:", "duplicate case"},
-      {"name = \"x\"\n", ":1:", "at least one [[case]]"},
-      {"[[case]]\nscene = \"plane\"\ntolerance = { mode = \"fuzzy\" }\n", ":3:", "fuzzy"},
-      {"[[case]]\nscene = \"plane\"\ntolerance = { max_mismatch_percent = 120 }\n",
-       ":3:", "0..100"},
-      {"[[case]]\nscene = \"plane\"\ntolerance = { mask = \"none.png\" }\n", ":3:", "no mask"},
-      {"[[case]]\nviews = [\"above\"]\n", ":1:", "needs scene"},
-      {"[[case]]\nscene = \"plane\"\nimages = [\"depth\"]\n", ":3:", "unknown image 'depth'"},
-  };
-  for (const Bad& b : bad) {
-    const std::string msg = error_of(b.text);
-    EXPECT_EQ(msg.rfind(file + b.line, 0), 0u) << b.text << " -> " << msg;
-    EXPECT_NE(msg.find(b.reason), std::string::npos) << b.text << " -> " << msg;
-  }
-}
-
 // The default goldens folder does not follow the suite file out of the project: like reports/,
 // it is goldens/<name> in the working directory; only the suite's own key is relative to it.
 TEST_F(SuiteFile, GoldensAreFoundFromTheWorkingDirectoryUnlessTheSuiteSaysWhere) {
   const fs::path elsewhere = dir_ / "outside" / "deep" / "s.toml";
   fs::create_directories(elsewhere.parent_path());
-  std::ofstream(elsewhere) << "[[case]]\nscene = \"plane\"\n";
+  const std::string image_case = "[[case]]\nname = \"a\"\nfiles = [\"a.png\"]\n";
+  std::ofstream(elsewhere) << image_case;
   EXPECT_EQ(load_suite(elsewhere).goldens, fs::path("goldens/s"));
-  std::ofstream(elsewhere) << "goldens = \"../g\"\n[[case]]\nscene = \"plane\"\n";
+  std::ofstream(elsewhere) << "goldens = \"../g\"\n" << image_case;
   EXPECT_EQ(load_suite(elsewhere).goldens, (dir_ / "outside" / "g").lexically_normal());
-  // The project's own suites name their goldens, so they are found from any directory.
-  const Suite d = load_suite(fs::path(AOSUITE_SOURCE_DIR) / "suites" / "default.toml");
-  EXPECT_EQ(d.goldens, (fs::path(AOSUITE_SOURCE_DIR) / "goldens" / "default").lexically_normal());
-  EXPECT_TRUE(fs::is_directory(d.goldens / d.cases.front().id)) << d.goldens;
 }
 
 // A suite's name names its report and goldens folders: nothing that leaves them.
 TEST_F(SuiteFile, NamesThatWouldLeaveTheirFoldersAreRejected) {
   for (const char* name : {"..", ".", ".hidden", "a/b", "a\\u0001b", ""}) {
-    const std::string msg =
-        error_of(std::string("name = \"") + name + "\"\n[[case]]\nscene = \"plane\"\n");
+    const std::string msg = error_of(std::string("name = \"") + name +
+                                     "\"\n[[case]]\nname = \"a\"\nfiles = [\"a.png\"]\n");
     EXPECT_NE(msg.find(":1:"), std::string::npos) << name << " -> " << msg;
     EXPECT_NE(msg.find("suite name"), std::string::npos) << name << " -> " << msg;
     EXPECT_EQ(msg.find('\x01'), std::string::npos) << msg;  // shown escaped
@@ -223,7 +131,11 @@ TEST_F(SuiteFile, MalformedImageCasesNameFileLineAndReason) {
   EXPECT_NE(error_of(head + "command = [\"true\"]\noutputs = [\"x.png\"]\ninputs = [\"no.txt\"]\n")
                 .find("s.toml:5:10: no input file"),
             std::string::npos);
-  EXPECT_NE(error_of(head + "files = [\"x.png\"]\nscene = \"corner\"\n").find("takes no 'scene'"),
+  EXPECT_NE(
+      error_of(head + "files = [\"x.png\"]\nscene = \"corner\"\n").find("unknown key 'scene'"),
+      std::string::npos);
+  // Without a registered kind, a case that is neither files nor a command names what it needs.
+  EXPECT_NE(error_of("[[case]]\nscene = \"corner\"\n").find("s.toml:1:1: a case needs command"),
             std::string::npos);
   EXPECT_NE(error_of(head + "files = [\"x.png\"]\ntimeout = 3\n").find("belongs to a command case"),
             std::string::npos);
@@ -549,74 +461,11 @@ TEST(Shards, TheExactFilterMatchesWholeIdsOnly) {
             R"(aosuite bless 'my suites/it'\''s.toml' --goldens g --filter '^(a-b|c\.d)$')");
 }
 
-// A parameter left out of the input hash would silently reuse stale renders: every
-// parameter of the table, set to its sample value, must change the hash, for every technique.
-TEST(CaseHash, EveryParameterChangesTheInputHash) {
-  Case c;
-  c.scene = std::make_shared<const renderer::Scene>(renderer::builtin_scene("plane"));
-  c.view = "above", c.width = 8, c.height = 8;
-  for (const renderer::TechniqueInfo& t : renderer::techniques()) {
-    c.technique = t.id, c.params = t.defaults();
-    const std::string base = input_hash(c, "gl");
-    for (const renderer::ParamSpec& spec : renderer::param_specs()) {
-      Case changed = c;
-      renderer::set_param(changed.params, spec.key, spec.sample);
-      EXPECT_NE(renderer::param_text(spec, changed.params), renderer::param_text(spec, c.params))
-          << spec.key << ": its sample equals " << t.name << "'s default";
-      EXPECT_NE(input_hash(changed, "gl"), base) << t.name << " " << spec.key;
-    }
-  }
-}
-
-// Every field of the scene a render reads changes the input hash: a changed field of view (or
-// any other) must never reuse a stale render (a mutation that left fovy_degrees out of the hash
-// passed every test before this one). Placement transforms are applied when a scene is loaded,
-// so they reach the hash as the positions and normals they move.
-TEST(CaseHash, EverySceneMeshAndViewFieldChangesTheInputHash) {
-  Case c;
-  c.scene = std::make_shared<const renderer::Scene>(renderer::builtin_scene("corner"));
-  c.view = c.scene->views[0].name, c.width = 8, c.height = 8;
-  c.technique = renderer::Technique::kSao, c.params = renderer::default_params(c.technique);
-  const std::string base = input_hash(c, "gl");
-  using Edit = std::function<void(renderer::Scene&)>;
-  const std::vector<std::pair<const char*, Edit>> edits{
-      {"position", [](renderer::Scene& s) { s.meshes[0].positions[0].y += 1e-3f; }},
-      {"normal", [](renderer::Scene& s) { s.meshes[0].normals[0].x += 1e-3f; }},
-      {"triangle",
-       [](renderer::Scene& s) {
-         std::swap(s.meshes[0].triangles[0].x, s.meshes[0].triangles[0].y);
-       }},
-      {"colour", [](renderer::Scene& s) { s.meshes[0].colour.g += 1e-3f; }},
-      {"ground", [](renderer::Scene& s) { s.meshes[0].ground = !s.meshes[0].ground; }},
-      {"mesh added", [](renderer::Scene& s) { s.meshes.push_back(s.meshes[0]); }},
-      {"eye", [](renderer::Scene& s) { s.views[0].eye.z += 1e-3f; }},
-      {"target", [](renderer::Scene& s) { s.views[0].target.x += 1e-3f; }},
-      {"up", [](renderer::Scene& s) { s.views[0].up.x += 1e-3f; }},
-      {"fovy_degrees", [](renderer::Scene& s) { s.views[0].fovy_degrees += 1e-3f; }},
-      {"near", [](renderer::Scene& s) { s.views[0].near *= 1.001f; }},
-  };
-  for (const auto& [field, edit] : edits) {
-    renderer::Scene s = *c.scene;
-    edit(s);
-    Case changed = c;
-    changed.scene = std::make_shared<const renderer::Scene>(std::move(s));
-    EXPECT_NE(input_hash(changed, "gl"), base) << field;
-  }
-  for (const auto& [what, edit] : std::vector<std::pair<const char*, std::function<void(Case&)>>>{
-           {"view", [](Case& k) { k.view = k.scene->views[1].name; }},
-           {"technique", [](Case& k) { k.technique = renderer::Technique::kGtao; }},
-           {"width", [](Case& k) { ++k.width; }},
-           {"height", [](Case& k) { ++k.height; }}}) {
-    Case changed = c;
-    edit(changed);
-    EXPECT_NE(input_hash(changed, "gl"), base) << what;
-  }
-  EXPECT_NE(input_hash(c, "another GL"), base);
-}
-
 TEST(Results, RoundTripThroughJson) {
   CaseResult c;
-  c.id = "a-b-sao-8x8", c.scene = "a", c.view = "b", c.technique = "sao", c.width = c.height = 8;
+  c.id = "a-b-sao-8x8", c.width = c.height = 8;
+  c.labels = {{"scene", "a"}, {"view", "b"}, {"technique", "sao"}};
+  c.figures = {{"ao_effect_less", 12.5}};
   c.params = {{"radius", 10}, {"blur", "none"}, {"weights", nlohmann::json::array({1, 0.5})}};
   c.kind = "command", c.source = "draw {out}", c.exit_status = 3, c.attempts = 2;
   c.command_stderr = "line 1\nline 2\n";
@@ -631,7 +480,7 @@ TEST(Results, RoundTripThroughJson) {
   c.times = {{"ao", 1.5}};
   c.input_hash = "12", c.judge_hash = "34";
   RunResults r;
-  r.suite = "s", r.gl = "gl", r.platform = "p", r.cases = {c};
+  r.suite = "s", r.environment = "gl", r.platform = "p", r.cases = {c};
   r.bless_prefix = "aosuite bless suites/s.toml";
   const RunResults back = run_from_json(to_json(r));
   EXPECT_EQ(to_json(back), to_json(r));
@@ -644,24 +493,6 @@ TEST(Results, RoundTripThroughJson) {
   EXPECT_EQ(flaky.cases[0].status, Status::kFlaky);
   EXPECT_EQ(count(flaky).flaky, 1);
   EXPECT_EQ(exit_code(count(flaky)), 0);  // flaky cases passed in the end
-}
-
-TEST(HtmlReport, LinksTheLatestSweepBesideIt) {
-  const test::TempDir dir;
-  RunResults r;
-  r.suite = "s";
-  write_html_report(r, dir.path() / "s");
-  auto page = [&] {
-    std::ifstream in(dir.path() / "s" / "index.html");
-    return std::string(std::istreambuf_iterator<char>(in), {});
-  };
-  EXPECT_NE(page().find("No sweep next to this report"), std::string::npos);
-  fs::create_directories(dir.path() / "sweep");
-  std::ofstream(dir.path() / "sweep" / "sweep.md") << "| t |";
-  std::ofstream(dir.path() / "sweep" / "sweep_320x180.svg") << "<svg/>";
-  write_html_report(r, dir.path() / "s");
-  EXPECT_NE(page().find("href=\"../sweep/sweep.md\""), std::string::npos);
-  EXPECT_NE(page().find("href=\"../sweep/sweep_320x180.svg\""), std::string::npos);
 }
 
 TEST(Escape, MarkupCharactersAreEscaped) {
@@ -693,7 +524,7 @@ TEST(Escape, NonUtf8AndControlBytesAreEscaped) {
 // folders.
 TEST(Results, AnyBytesMakeValidJsonAndReadPathsStayInside) {
   CaseResult c;
-  c.id = "a-b-sao-8x8", c.scene = "a", c.view = "b", c.technique = "sao";
+  c.id = "a-b-sao-8x8";
   c.status = Status::kError, c.message = "dir\xff\x01/with_ao.png: cannot read";
   c.files = {{"with_ao", "a-b-sao-8x8/with_ao.png"}};
   RunResults r;

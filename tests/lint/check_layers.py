@@ -18,10 +18,12 @@ LAYERS = {
     "compare": {"common"},
     "renderer": {"common"},
     "reference": {"common", "compare", "renderer"},
-    # The harness still holds rendered cases (suite.hpp's Case names a Scene and a Technique);
-    # issue 28's source interface moves them to the AO layer and removes "renderer" here.
-    "harness": {"common", "compare", "renderer"},
-    "cli": {"common", "compare", "renderer", "reference", "harness"},
+    # The image-regression tool: suites, goldens, reports. Other kinds of case (the AO bench's
+    # rendered scenes) register themselves from above (harness/case_kind.hpp).
+    "harness": {"common", "compare"},
+    # The AO bench on top of the tool: rendered cases, its report section.
+    "ao": {"common", "compare", "renderer", "reference", "harness"},
+    "cli": {"common", "compare", "renderer", "reference", "harness", "ao"},
 }
 INCLUDE = re.compile(r'#include "([\w/]+)\.[ch]pp"')
 

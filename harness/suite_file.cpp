@@ -1,0 +1,401 @@
+#include "harness/suite_file.hpp"
+
+#include <fmt/format.h>
+#include <toml++/toml.h>
+
+#include <algorithm>
+#include <set>
+#include <stdexcept>
+
+#include "common/toml_reader.hpp"
+#include "compare/picture.hpp"
+#include "harness/case_kind.hpp"
+#include "harness/escape.hpp"
+
+namespace aosuite::harness {
+namespace {
+
+namespace fs = std::filesystem;
+
+using Reader = TomlReader;
+
+// A parameter as its TOML type: integer, float, boolean, string, or an array of them.
+nlohmann::json typed_value(const Reader& r, const toml::node& n) {
+  if (const toml::array* a = n.as_array()) {
+    nlohmann::json out = nlohmann::json::array();
+    for (const toml::node& e : *a) out.push_back(typed_value(r, e));
+    return out;
+  }
+  if (auto s = n.value_exact<std::string>()) return *s;
+  if (auto i = n.value_exact<std::int64_t>()) return *i;
+  if (auto d = n.value_exact<double>()) return *d;
+  if (auto b = n.value_exact<bool>()) return *b;
+  r.fail(n.source(), "a parameter must be a number, a string, a boolean or an array of them");
+}
+
+void read_params(const Reader& r, const toml::node& n, std::map<std::string, std::string>& out,
+                 std::map<std::string, toml::source_region>& where, nlohmann::json& values) {
+  for (const auto& [key, value] : r.table(n, "params")) {
+    values[std::string(key.str())] = typed_value(r, value);
+    if (auto b = value.value_exact<bool>()) {
+      out[std::string(key.str())] = *b ? "true" : "false";  // renderer cases refuse it by name
+    } else {
+      out[std::string(key.str())] = r.param(value);
+    }
+    where[std::string(key.str())] = value.source();
+  }
+}
+
+// A metric's gates: `flip = { max_mean = 0.02, max_q3 = 0.3 }` (compare/metric.hpp says the keys).
+metric::Gates read_gates(const Reader& r, const metric::Metric& m, const toml::node& n) {
+  metric::Gates g{&m, {}, false};
+  for (const auto& [key, value] : r.table(n, m.name)) {
+    try {
+      const double v =
+          value.is_boolean() ? double(r.boolean(value, key.str())) : r.number(value, key.str());
+      metric::add_gate(g, key.str(), v);
+    } catch (const std::invalid_argument& e) {
+      r.fail(value.source(), e.what());
+    }
+  }
+  if (g.limits.empty()) r.fail(n.source(), fmt::format("{} sets no limit", m.name));
+  return g;
+}
+
+// [tolerance.regions]: name = { color = [R, G, B], <metric> = { gates }, ... }.
+std::vector<Region> read_regions(const Reader& r, const toml::node& n) {
+  std::vector<Region> out;
+  for (const auto& [name, value] : r.table(n, "regions")) {
+    Region g;
+    g.name = std::string(name.str());
+    if (!valid_name(g.name))
+      r.fail(value.source(), "region name '" + printable(g.name) + "' is not a name");
+    const toml::table& tbl = r.table(value, g.name);
+    const toml::node& color = r.required(tbl, "color");
+    const toml::array* rgb = color.as_array();
+    if (!rgb || rgb->size() != 3) r.fail(color.source(), "color is [R, G, B]");
+    for (int c = 0; c < 3; ++c)
+      g.color[std::size_t(c)] = r.integer((*rgb)[std::size_t(c)], "color", 0, 255);
+    if (g.color == std::array<int, 3>{}) r.fail(color.source(), "black marks unclassified pixels");
+    for (const Region& other : out)
+      if (other.color == g.color) r.fail(color.source(), "two regions share a colour");
+    for (const auto& [key, gates] : tbl) {
+      if (key.str() == "color") continue;
+      const metric::Metric* m = nullptr;
+      try {
+        m = &metric::find(key.str());
+      } catch (const std::invalid_argument& e) {
+        r.fail(gates.source(), e.what());
+      }
+      g.gates.push_back(read_gates(r, *m, gates));
+    }
+    if (g.gates.empty()) r.fail(value.source(), "region '" + g.name + "' has no metric gate");
+    out.push_back(std::move(g));
+  }
+  return out;
+}
+
+void read_tolerance(const Reader& r, const fs::path& dir, const toml::node& n, Tolerance& t) {
+  const toml::table& tbl = r.table(n, "tolerance");
+  static constexpr std::string_view kResembleKeys[] = {
+      "mode", "max_mismatch_percent", "max_channel_delta", "ignore", "mask", "foreground_only"};
+  bool resemble_named = false, metric_named = false;
+  for (const auto& [key, value] : tbl) {
+    if (std::find(std::begin(kResembleKeys), std::end(kResembleKeys), key.str()) !=
+        std::end(kResembleKeys)) {
+      resemble_named |=
+          key.str() != "ignore" && key.str() != "mask" && key.str() != "foreground_only";
+      if (key.str() == "foreground_only") t.foreground_only = r.boolean(value, "foreground_only");
+      continue;
+    }
+    if (key.str() == "regions") {
+      t.regions = read_regions(r, value);
+      continue;
+    }
+    const metric::Metric* m = nullptr;
+    try {
+      m = &metric::find(key.str());
+    } catch (const std::invalid_argument&) {
+      r.fail(value.source(), fmt::format("unknown key '{}' (tolerance keys: mode, "
+                                         "max_mismatch_percent, max_channel_delta, ignore, mask, "
+                                         "foreground_only, regions, and the metrics {})",
+                                         printable(key.str()), metric::names()));
+    }
+    std::erase_if(t.gates, [&](const metric::Gates& g) { return g.metric == m; });
+    t.gates.push_back(read_gates(r, *m, value));
+    metric_named = true;
+  }
+  // Metric gates alone replace Resemble's; with Resemble's keys beside them, both hold.
+  if (metric_named) t.resemble = resemble_named;
+  if (resemble_named) t.resemble = true;
+  if (const toml::node* m = tbl.get("mode")) {
+    try {
+      t.mode = resemble::parse_mode(r.string(*m, "mode"));
+    } catch (const std::invalid_argument& e) {
+      r.fail(m->source(), e.what());
+    }
+  }
+  if (const toml::node* m = tbl.get("max_mismatch_percent")) {
+    t.max_mismatch_percent = r.number(*m, "max_mismatch_percent");
+    if (!(t.max_mismatch_percent >= 0 && t.max_mismatch_percent <= 100)) {
+      r.fail(m->source(), "max_mismatch_percent must be 0..100");
+    }
+  }
+  if (const toml::node* m = tbl.get("max_channel_delta")) {
+    t.max_channel_delta = r.integer(*m, "max_channel_delta", 0, 255);
+  }
+  if (const toml::node* m = tbl.get("ignore")) {
+    t.ignore.clear();
+    const toml::array* boxes = m->as_array();
+    if (!boxes) r.fail(m->source(), "ignore must be an array of [left, top, right, bottom]");
+    for (const toml::node& b : *boxes) {
+      const toml::array* box = b.as_array();
+      if (!box || box->size() != 4) r.fail(b.source(), "a box is [left, top, right, bottom]");
+      resemble::Box out;
+      out.left = r.integer((*box)[0], "left", 0, 1 << 20);
+      out.top = r.integer((*box)[1], "top", 0, 1 << 20);
+      out.right = r.integer((*box)[2], "right", 0, 1 << 20);
+      out.bottom = r.integer((*box)[3], "bottom", 0, 1 << 20);
+      if (out.right < out.left || out.bottom < out.top)
+        r.fail(b.source(), "box has right < left or bottom < top");
+      t.ignore.push_back(out);
+    }
+  }
+  if (const toml::node* m = tbl.get("mask")) {
+    t.mask = dir / r.string(*m, "mask");
+    if (!fs::is_regular_file(t.mask)) r.fail(m->source(), "no mask image " + t.mask.string());
+  }
+}
+
+// What [defaults] and every [[case]] may say, whatever makes its images.
+struct Common {
+  int width = 320, height = 180;
+  std::map<std::string, std::string> params;
+  std::map<std::string, toml::source_region> param_at;
+  nlohmann::json values = nlohmann::json::object();
+  Tolerance tolerance;
+};
+constexpr std::string_view kCommonKeys[] = {"width", "height", "params", "tolerance"};
+constexpr std::string_view kImageCaseKeys[] = {"name",   "command", "outputs",
+                                               "inputs", "timeout", "files"};
+
+void read_common(const Reader& r, const fs::path& dir, const toml::table& t, Common& c) {
+  if (const toml::node* n = t.get("width")) c.width = r.integer(*n, "width", 1, 16384);
+  if (const toml::node* n = t.get("height")) c.height = r.integer(*n, "height", 1, 16384);
+  if (const toml::node* n = t.get("params")) read_params(r, *n, c.params, c.param_at, c.values);
+  if (const toml::node* n = t.get("tolerance")) read_tolerance(r, dir, *n, c.tolerance);
+}
+
+// An image's name from its file: the stem, which names golden and report files.
+std::string image_name(const Reader& r, const toml::node& at, const fs::path& file) {
+  if (!is_image_name(file)) {
+    r.fail(at.source(), "'" + printable(file.string()) + "' is not an image file (aosuite reads " +
+                            kImageFormats + ")");
+  }
+  const std::string stem = file.stem().string();
+  if (!valid_name(stem) || stem == "case" || stem.starts_with("golden_") ||
+      stem.starts_with("diff_") || stem.starts_with("thumb_")) {
+    r.fail(at.source(), "image file name '" + printable(file.filename().string()) +
+                            "' must be letters, digits, - _ . and not start with '.', golden_, "
+                            "diff_ or thumb_ (it names files)");
+  }
+  return stem;
+}
+
+// A relative path that stays inside its folder.
+fs::path inside_path(const Reader& r, const toml::node& at, const std::string& text) {
+  const fs::path p = fs::path(text).lexically_normal();
+  if (text.empty() || p.is_absolute() || p.empty() || *p.begin() == "..") {
+    r.fail(at.source(), "'" + printable(text) + "' must be a relative path inside the folder");
+  }
+  return p;
+}
+
+// Refuses a key of `t` that is neither shared nor in `own`, loading the registered kinds
+// first if one is unknown (it may be theirs).
+void only_known_keys(const Reader& r, const toml::table& t, std::span<const std::string_view> own,
+                     std::vector<std::string_view> (*kinds_keys)()) {
+  const auto known = [&] {
+    std::vector<std::string_view> keys(std::begin(kCommonKeys), std::end(kCommonKeys));
+    keys.insert(keys.end(), own.begin(), own.end());
+    for (std::string_view k : kinds_keys()) keys.push_back(k);
+    return keys;
+  };
+  std::vector<std::string_view> keys = known();
+  const bool unknown = std::ranges::any_of(
+      t, [&](const auto& kv) { return std::ranges::find(keys, kv.first.str()) == keys.end(); });
+  if (unknown && load_kinds()) keys = known();
+  r.only_keys(t, keys);
+}
+
+// A [[case]] with `command` or `files`.
+Case image_case(const Reader& r, const fs::path& dir, const toml::table& t, Common c) {
+  r.only_keys(t, [] {
+    std::vector<std::string_view> keys(std::begin(kCommonKeys), std::end(kCommonKeys));
+    keys.insert(keys.end(), std::begin(kImageCaseKeys), std::end(kImageCaseKeys));
+    return keys;
+  }());
+  read_common(r, dir, t, c);
+  const toml::node* name = t.get("name");
+  if (!name) r.fail(t.source(), "an image case needs name = \"<case id>\"");
+  Case k;
+  k.id = r.string(*name, "name");
+  if (!valid_name(k.id)) {
+    r.fail(name->source(), "case id '" + printable(k.id) +
+                               "' may hold only letters, digits, - _ . and not start with '.'");
+  }
+  auto src = std::make_shared<ImageSource>();
+  src->dir = fs::absolute(dir).lexically_normal();
+  k.width = c.width, k.height = c.height, k.tolerance = c.tolerance;
+  if (k.tolerance.foreground_only) {
+    r.fail(t.source(),
+           "foreground_only needs a rendered scene (its G-buffer says which pixels "
+           "are geometry); an image case has none");
+  }
+  k.param_overrides = c.params, k.values = c.values;
+  const toml::node* command = t.get("command");
+  const toml::node* files = t.get("files");
+  if (command && files) r.fail(files->source(), "a case has command or files, not both");
+  if (command) {
+    src->command = r.strings(*command, "command");
+    const toml::node* outputs = t.get("outputs");
+    if (!outputs) {
+      r.fail(command->source(), "a command case needs outputs = [\"<file it writes>.png\", ...]");
+    }
+    for (const std::string& o : r.strings(*outputs, "outputs")) {
+      src->outputs.push_back(inside_path(r, *outputs, o).string());
+      k.images.push_back(image_name(r, *outputs, o));
+    }
+    if (const toml::node* n = t.get("inputs")) {
+      for (const std::string& in : r.strings(*n, "inputs")) {
+        src->inputs.push_back(dir / in);
+        if (!fs::is_regular_file(src->inputs.back())) {
+          r.fail(n->source(), "no input file " + printable(src->inputs.back().string()));
+        }
+      }
+    }
+    if (const toml::node* n = t.get("timeout")) {
+      src->timeout_seconds = r.positive(*n, "timeout");
+    }
+  } else {
+    for (const char* key : {"outputs", "inputs", "timeout"}) {
+      if (const toml::node* n = t.get(key)) {
+        r.fail(n->source(), std::string("'") + key + "' belongs to a command case");
+      }
+    }
+    for (const std::string& f : r.strings(*files, "files")) {
+      src->files.push_back(dir / f);
+      k.images.push_back(image_name(r, *files, f));
+    }
+  }
+  // One file type per case: 8-bit images (Resemble and the metrics), or 16-bit and float ones
+  // (the metrics, else bytes).
+  const std::vector<std::string>& names =
+      command ? src->outputs : std::vector<std::string>(src->files.begin(), src->files.end());
+  if (names.empty()) r.fail(t.source(), "an image case needs at least one image");
+  src->ext = fs::path(names.front()).extension().string();
+  for (const std::string& n : names) {
+    if (fs::path(n).extension() != src->ext) {
+      r.fail((command ? *t.get("outputs") : *files).source(),
+             "a case's images are all of one file type (all .png, all .exr, ...)");
+    }
+  }
+  std::set<std::string> seen;
+  for (const std::string& image : k.images) {
+    if (!seen.insert(image).second) {
+      r.fail((command ? *t.get("outputs") : *files).source(),
+             "two images named '" + image + "' (their file stems must differ)");
+    }
+  }
+  if (command) {
+    k.source = src;
+    std::map<std::string, std::string> values = command_placeholders(k);
+    values["out"] = "/out";
+    for (const std::string& arg : src->command) {
+      try {
+        expand_placeholders(arg, values, false);
+      } catch (const std::invalid_argument& e) {
+        r.fail(command->source(), e.what());
+      }
+    }
+  }
+  k.source = std::move(src);
+  return k;
+}
+
+}  // namespace
+
+Suite load_suite(const fs::path& file) {
+  toml::table root;
+  try {
+    root = toml::parse_file(file.string());
+  } catch (const toml::parse_error& e) {
+    const auto& at = e.source().begin;
+    throw std::runtime_error(
+        fmt::format("{}:{}:{}: {}", file.string(), at.line, at.column, e.description()));
+  }
+  const Reader r(file);
+  const fs::path dir = file.parent_path().empty() ? fs::path(".") : file.parent_path();
+  r.only_keys(root, {"name", "goldens", "defaults", "case"});
+
+  Suite suite;
+  suite.file = file;
+  suite.name = file.stem().string();
+  if (const toml::node* n = root.get("name")) suite.name = r.string(*n, "name");
+  if (!valid_name(suite.name)) {
+    r.fail(root.get("name") ? root.get("name")->source() : root.source(),
+           "suite name '" + printable(suite.name) +
+               "' must be letters, digits, - _ . and not start with '.' (it names folders)");
+  }
+  suite.goldens = fs::path("goldens") / suite.name;
+  if (const toml::node* n = root.get("goldens")) suite.goldens = dir / r.string(*n, "goldens");
+  suite.goldens = suite.goldens.lexically_normal();
+
+  Common defaults;
+  const toml::table* defaults_table = nullptr;
+  if (const toml::node* n = root.get("defaults")) {
+    defaults_table = &r.table(*n, "defaults");
+    only_known_keys(r, *defaults_table, {}, kinds_default_keys);
+    read_common(r, dir, *defaults_table, defaults);
+  }
+  const toml::array* cases = root.get_as<toml::array>("case");
+  if (!cases || cases->empty()) r.fail(root.source(), "a suite needs at least one [[case]]");
+
+  std::set<std::string> ids;
+  std::map<std::string, std::shared_ptr<const void>> memo;
+  for (const toml::node& node : *cases) {
+    const toml::table& t = r.table(node, "case");
+    std::vector<Case> made;
+    if (t.get("command") || t.get("files")) {
+      made.push_back(image_case(r, dir, t, defaults));
+    } else {
+      const CaseKind* kind = kind_for(t);
+      if (!kind) {
+        std::string kinds;
+        for (const CaseKind* k : harness::kinds()) kinds += fmt::format("{} = ..., ", k->key());
+        r.fail(t.source(), fmt::format("a case needs {}command = [...] or files = [...]", kinds));
+      }
+      only_known_keys(r, t, {std::begin(kImageCaseKeys), 1}, kinds_case_keys);
+      Common c = defaults;
+      read_common(r, dir, t, c);
+      CaseTable table{r, dir, defaults_table, t, {}, c.param_at, {}, memo};
+      table.base.kind = kind;
+      table.base.width = c.width, table.base.height = c.height;
+      table.base.tolerance = c.tolerance;
+      table.base.param_overrides = c.params, table.base.values = c.values;
+      if (const toml::node* n = t.get("name")) table.suffix = "-" + r.string(*n, "name");
+      kind->expand(table, made);
+    }
+    for (Case& k : made) {
+      if (!valid_name(k.id)) {
+        r.fail(t.source(), "case id '" + printable(k.id) +
+                               "' may hold only letters, digits, - _ . and not start with '.'");
+      }
+      if (!ids.insert(k.id).second) r.fail(t.source(), "duplicate case '" + k.id + "'");
+      suite.cases.push_back(std::move(k));
+    }
+  }
+  return suite;
+}
+
+}  // namespace aosuite::harness
