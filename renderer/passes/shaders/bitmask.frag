@@ -68,7 +68,9 @@ void main() {
   vec3 normal = safe_normalize(texelFetch(u_normal, p, 0).xyz);
 
   // The kernel reaches u_radius, where the reference's rays stop; a sample farther away in
-  // the scene is no occluder, as a ray hit beyond r is none (binary, like V_r).
+  // the scene is no occluder, as a ray hit beyond r is none (binary, like V_r). Not XeGTAO's
+  // 1.457 u_radius: with this hard cut, the same steps spread over the wider disc found fewer
+  // occluders (error against the reference rose on all six built-in views tried).
   float radius = u_radius;
   // Capped so an absurd radius cannot make offsets Inf (and Inf * 0 NaN).
   float screen_radius = min(radius * u_proj_scale / z, 1e6);  // pixels
