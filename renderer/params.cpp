@@ -14,7 +14,9 @@ constexpr unsigned bit(Technique t) { return 1u << static_cast<unsigned>(t); }
 // The estimators that take s taps within a radius, with a bias.
 constexpr unsigned kTapped =
     bit(Technique::kAlchemy) | bit(Technique::kSao) | bit(Technique::kMssao) | bit(Technique::kUe4);
-constexpr unsigned kScreenSpace = kTapped | bit(Technique::kGtao);
+// GTAO's slices and steps, which the visibility bitmask shares.
+constexpr unsigned kSliced = bit(Technique::kGtao) | bit(Technique::kBitmask);
+constexpr unsigned kScreenSpace = kTapped | kSliced;
 constexpr unsigned kAll = kScreenSpace | bit(Technique::kPmi);
 constexpr double kBig = 1e30;
 
@@ -28,7 +30,7 @@ const ParamSpec kParams[] = {
      +[](AoParams& p) -> float& { return p.bias; }, -kBig, kBig, false, "0.0123"},
     {"intensity", "sigma: scales the occlusion", kScreenSpace,
      +[](AoParams& p) -> float& { return p.intensity; }, -kBig, kBig, false, "0.77"},
-    {"contrast", "k (Alchemy, SAO), power (UE4) or final power (GTAO)", kScreenSpace,
+    {"contrast", "k (Alchemy, SAO), power (UE4) or final power (GTAO, bitmask)", kScreenSpace,
      +[](AoParams& p) -> float& { return p.contrast; }, 0, kBig, true, "1.3"},
     {"blur", "none|gaussian|bilateral, after the AO pass", kAll,
      +[](AoParams& p) -> Blur& { return p.blur; }, 0, 0, false, "gaussian"},
@@ -45,15 +47,19 @@ const ParamSpec kParams[] = {
     {"importance_best", "PMI: the k best views share 99 % of p(V); 0 = projected area",
      bit(Technique::kPmi), +[](AoParams& p) -> int& { return p.pmi.importance_best; }, 0, 2562,
      false, "3"},
-    {"slices", "GTAO slices per pixel", bit(Technique::kGtao),
+    {"slices", "GTAO and bitmask slices per pixel", kSliced,
      +[](AoParams& p) -> int& { return p.gtao.slices; }, 1, 64, false, "2"},
-    {"steps", "GTAO steps per side of a slice", bit(Technique::kGtao),
+    {"steps", "GTAO and bitmask steps per side of a slice", kSliced,
      +[](AoParams& p) -> int& { return p.gtao.steps; }, 1, 64, false, "5"},
     {"falloff_range", "GTAO: share of the radius over which occluders fade out",
      bit(Technique::kGtao), +[](AoParams& p) -> float& { return p.gtao.falloff_range; }, 0, 1, true,
      "0.4"},
     {"thin_occluder", "GTAO: thin-occluder compensation (0 = off)", bit(Technique::kGtao),
      +[](AoParams& p) -> float& { return p.gtao.thin_occluder; }, 0, 0.7, false, "0.3"},
+    // Capped so the shader's squared lengths stay finite.
+    {"thickness", "bitmask: assumed thickness of every occluder, scene units",
+     bit(Technique::kBitmask), +[](AoParams& p) -> float& { return p.bitmask.thickness; }, 0, 1e6,
+     false, "0.6"},
 };
 
 [[noreturn]] void bad_value(std::string_view key, std::string_view value, const char* why) {

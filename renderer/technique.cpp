@@ -11,6 +11,7 @@ std::unique_ptr<AoPass> make_ue4_pass();      // ao_pass.cpp
 std::unique_ptr<AoPass> make_sao_pass();      // sao_pass.cpp
 std::unique_ptr<AoPass> make_mssao_pass();    // mssao_pass.cpp
 std::unique_ptr<AoPass> make_gtao_pass();     // gtao_pass.cpp
+std::unique_ptr<AoPass> make_bitmask_pass();  // bitmask_pass.cpp
 
 namespace {
 
@@ -56,6 +57,16 @@ constexpr TechniqueInfo kTechniques[] = {
        return p;
      },
      make_gtao_pass},
+    {Technique::kBitmask, "bitmask",
+     "visibility-bitmask AO (Therrien et al. 2023): GTAO's slices with thickness", Space::kScreen,
+     [] {
+       AoParams p;
+       // GTAO's High preset (3 slices x 3 steps) and radius, without XeGTAO's tuned final
+       // power: sectors weighted by their cosine measure already estimate the reference's AO.
+       p.radius = 0.5f;
+       return p;
+     },
+     make_bitmask_pass},
     {Technique::kPmi, "pmi", "viewpoint-based AO, polygonal mutual information (Gonzalez 2008)",
      Space::kObject, [] { return AoParams{}; }, nullptr},
 };

@@ -14,7 +14,7 @@ namespace aosuite::renderer {
 
 // kPmi: viewpoint-based AO (González, Sbert & Feixas 2008), per polygon in object space
 // (renderer/pmi/pmi_channel.hpp), not a screen-space estimator.
-enum class Technique { kAlchemy, kSao, kMssao, kUe4, kPmi, kGtao };
+enum class Technique { kAlchemy, kSao, kMssao, kUe4, kPmi, kGtao, kBitmask };
 
 enum class Blur { kNone, kGaussian, kBilateral };
 Blur parse_blur(std::string_view name);  // none|gaussian|bilateral
@@ -49,6 +49,12 @@ struct GtaoParams {
   float thin_occluder = 0;       // XeGTAO's ThinOccluderCompensation
 };
 
+// Visibility bitmask (Therrien et al. 2023): GTAO's slices and steps (GtaoParams), and the
+// thickness every sample is assumed to have behind its visible front, in scene units.
+struct BitmaskParams {
+  float thickness = 0.25f;
+};
+
 struct AoParams {
   int samples = 16;
   float radius = 1;     // scene units
@@ -59,6 +65,7 @@ struct AoParams {
   MssaoParams mssao;
   PmiParams pmi;
   GtaoParams gtao;
+  BitmaskParams bitmask;
 };
 
 class AoPass;

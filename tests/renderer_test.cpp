@@ -298,6 +298,34 @@ TEST(Renderer, IntensityDarkensEveryTechnique) {
   }
 }
 
+TEST(Renderer, BitmaskOpenPlaneIsExactlyOne) {
+  // Sectors count by their cosine-weighted measure and slices by the ratio of visible to total
+  // measure, so an open plane is 1 at every pixel and slice angle, unblurred, from any view.
+  const Scene plane = builtin_scene("plane");
+  for (std::size_t v = 0; v < plane.views.size(); ++v) {
+    RenderSettings s = settings(Technique::kBitmask, default_params(Technique::kBitmask).radius);
+    s.width = 320, s.height = 180;
+    const Stats st = geometry_stats(render(plane, v, s), 1.0f);
+    EXPECT_GT(st.pixels, 0) << "view " << v;
+    EXPECT_EQ(st.min, 1.0) << "view " << v;
+  }
+}
+
+TEST(Renderer, BitmaskThinOccludersLetLightPassBehind) {
+  // A sample occludes only the sectors its slab of `thickness` covers: thin slabs leave the
+  // sectors behind them open, and a thick one closes everything down to the horizon as
+  // GTAO's horizon does.
+  for (const char* name : {"corner", "village"}) {
+    const Scene scene = builtin_scene(name);
+    RenderSettings s = settings(Technique::kBitmask, 0.5f);
+    s.params.bitmask.thickness = 0.02f;
+    const double thin = geometry_stats(render(scene, 0, s)).mean;
+    s.params.bitmask.thickness = 100;
+    const double thick = geometry_stats(render(scene, 0, s)).mean;
+    EXPECT_GT(thin, thick + 0.005) << name;
+  }
+}
+
 // The C++ twin of shaders/ao_uniforms.glsl must lay the block out as the driver does, for
 // every program that reads it.
 TEST(Renderer, AoUniformBlockMatchesTheShadersLayout) {
@@ -305,7 +333,7 @@ TEST(Renderer, AoUniformBlockMatchesTheShadersLayout) {
   const char* names[] = {
       "u_samples",       "u_radius",           "u_bias",       "u_intensity", "u_contrast",
       "u_turns",         "u_max_pixel_radius", "u_proj_scale", "u_slices",    "u_steps",
-      "u_falloff_range", "u_thin_occluder"};
+      "u_falloff_range", "u_thin_occluder",    "u_thickness"};
   const std::size_t expected[] = {offsetof(AoUniformBlock, samples),
                                   offsetof(AoUniformBlock, radius),
                                   offsetof(AoUniformBlock, bias),
@@ -317,7 +345,8 @@ TEST(Renderer, AoUniformBlockMatchesTheShadersLayout) {
                                   offsetof(AoUniformBlock, slices),
                                   offsetof(AoUniformBlock, steps),
                                   offsetof(AoUniformBlock, falloff_range),
-                                  offsetof(AoUniformBlock, thin_occluder)};
+                                  offsetof(AoUniformBlock, thin_occluder),
+                                  offsetof(AoUniformBlock, thickness)};
   for (const char* fragment :
        {"alchemy.frag", "sao.frag", "ue4.frag", "gtao.frag", "mssao_level.frag"}) {
     const Program program = make_program({"fullscreen.vert", fragment});

@@ -23,7 +23,9 @@ AoUniformBlock ao_uniform_block(const AoParams& p, const Camera& camera) {
           p.gtao.slices,
           p.gtao.steps,
           p.gtao.falloff_range,
-          p.gtao.thin_occluder};
+          p.gtao.thin_occluder,
+          p.bitmask.thickness,
+          {0, 0, 0}};
 }
 
 AoUniformBuffer::AoUniformBuffer() : buffer_(make_buffer(nullptr, sizeof(AoUniformBlock))) {}

@@ -17,13 +17,16 @@ struct AoUniformBlock {
   float radius, bias, intensity, contrast, turns, max_pixel_radius, proj_scale;
   std::int32_t slices, steps;
   float falloff_range, thin_occluder;
+  float thickness;
+  float std140_padding[3];  // the block's size rounds up to 16 bytes
 };
 static_assert(offsetof(AoUniformBlock, samples) == 0);
 static_assert(offsetof(AoUniformBlock, radius) == 4);
 static_assert(offsetof(AoUniformBlock, proj_scale) == 28);
 static_assert(offsetof(AoUniformBlock, slices) == 32);
 static_assert(offsetof(AoUniformBlock, thin_occluder) == 44);
-static_assert(sizeof(AoUniformBlock) == 48);
+static_assert(offsetof(AoUniformBlock, thickness) == 48);
+static_assert(sizeof(AoUniformBlock) == 64);
 
 inline constexpr GLuint kAoUniformBinding = 0;  // the block's `binding` in the GLSL
 

@@ -10,8 +10,9 @@ layout(std140, binding = 0) uniform AoUniforms {
   float u_turns;              // spiral turns (Alchemy, SAO)
   float u_max_pixel_radius;   // MSSAO's per-level cap; unbounded elsewhere
   float u_proj_scale;         // pixels per unit at unit distance: H / (2 tan(fovy/2))
-  int u_slices;               // GTAO
-  int u_steps;                // GTAO, per side
+  int u_slices;               // GTAO, bitmask
+  int u_steps;                // GTAO, bitmask: per side
   float u_falloff_range;      // GTAO: share of the radius over which occluders fade out
   float u_thin_occluder;      // GTAO: XeGTAO's ThinOccluderCompensation
+  float u_thickness;          // bitmask: every occluder's assumed thickness, scene units
 };

@@ -11,23 +11,11 @@ uniform sampler2D u_depth;
 uniform sampler2D u_normal;
 #include "ao_uniforms.glsl"  // u_contrast is XeGTAO's FinalValuePower
 layout(location = 0) out float o_ao;
+#include "slice_sampling.glsl"  // slice_and_step_noise, step_distance
 
 const float kPi = 3.14159265;
 const float kRadiusMultiplier = 1.457;   // XeGTAO: radius as the RT reference tuned it
-const float kSampleDistributionPower = 2.0;  // more samples near the centre
 const float kMinVisibility = 0.03;
-
-// Per-pixel noise: the slice angle's offset from a 4x4 Bayer matrix, so any 4x4 block of
-// pixels holds 16 evenly spaced slice rotations and the blur that follows integrates over
-// them (XeGTAO drives an R2 sequence with a Hilbert index to the same end, for its 3x3
-// denoiser); the step offset from R2 over the pixel's place in a 64x64 tile.
-vec2 slice_and_step_noise(ivec2 p) {
-  const float bayer[16] = float[16](0.0, 8.0, 2.0, 10.0, 12.0, 4.0, 14.0, 6.0, 3.0, 11.0, 1.0,
-                                    9.0, 15.0, 7.0, 13.0, 5.0);
-  float slice = (bayer[(p.y & 3) * 4 + (p.x & 3)] + 0.5) / 16.0;
-  float index = float((p.y & 63) * 64 + (p.x & 63));
-  return vec2(slice, fract(0.5 + index * 0.5698402910));
-}
 
 void main() {
   ivec2 p = ivec2(gl_FragCoord.xy);
@@ -70,8 +58,7 @@ void main() {
     float low_cos0 = cos(n + 0.5 * kPi), low_cos1 = cos(n - 0.5 * kPi);
     float horizon_cos0 = low_cos0, horizon_cos1 = low_cos1;
     for (int step = 0; step < steps; ++step) {
-      float step_noise = fract(noise.y + float(slice + step * steps) * 0.6180339887);
-      float s = pow((float(step) + step_noise) / float(steps), kSampleDistributionPower) + min_s;
+      float s = step_distance(noise.y, slice, step, steps, min_s);
       vec2 offset = s * screen_radius * omega;
       for (int side = 0; side < 2; ++side) {
         vec2 at = vec2(p) + 0.5 + (side == 0 ? offset : -offset);
