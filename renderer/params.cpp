@@ -10,55 +10,58 @@
 namespace aosuite::renderer {
 namespace {
 
-constexpr unsigned bit(Technique t) { return 1u << static_cast<unsigned>(t); }
-// The estimators that take s taps within a radius, with a bias.
-constexpr unsigned kTapped =
-    bit(Technique::kAlchemy) | bit(Technique::kSao) | bit(Technique::kMssao) | bit(Technique::kUe4);
-// GTAO's slices and steps, which the visibility bitmask shares.
-constexpr unsigned kSliced = bit(Technique::kGtao) | bit(Technique::kBitmask);
-constexpr unsigned kScreenSpace = kTapped | kSliced;
-constexpr unsigned kAll = kScreenSpace | bit(Technique::kPmi);
+// Which techniques read a row, from what their registry rows say (technique.cpp): a new
+// technique reads the shared rows without an edit here.
+bool tapped(const TechniqueInfo& t) { return t.sampling == Sampling::kTaps; }
+bool sliced(const TechniqueInfo& t) { return t.sampling == Sampling::kSlices; }
+bool screen_space(const TechniqueInfo& t) { return t.space == Space::kScreen; }
+bool every(const TechniqueInfo&) { return true; }
+// A row only one technique reads.
+template <Technique id>
+bool only(const TechniqueInfo& t) {
+  return t.id == id;
+}
 constexpr double kBig = 1e30;
 
 // The table. Ranges are what the passes handle without NaN or a runaway cost.
 const ParamSpec kParams[] = {
-    {"samples", "taps per pixel", kTapped, +[](AoParams& p) -> int& { return p.samples; }, 1, 1024,
+    {"samples", "taps per pixel", tapped, +[](AoParams& p) -> int& { return p.samples; }, 1, 1024,
      false, "7"},
-    {"radius", "world-space radius, scene units", kScreenSpace,
+    {"radius", "world-space radius, scene units", screen_space,
      +[](AoParams& p) -> float& { return p.radius; }, 0, kBig, true, "0.37"},
-    {"bias", "depth or angle bias (each shader's header says which)", kTapped,
+    {"bias", "depth or angle bias (each shader's header says which)", tapped,
      +[](AoParams& p) -> float& { return p.bias; }, -kBig, kBig, false, "0.0123"},
-    {"intensity", "sigma: scales the occlusion", kScreenSpace,
+    {"intensity", "sigma: scales the occlusion", screen_space,
      +[](AoParams& p) -> float& { return p.intensity; }, -kBig, kBig, false, "0.77"},
-    {"contrast", "k (Alchemy, SAO), power (UE4) or final power (GTAO, bitmask)", kScreenSpace,
+    {"contrast", "k (Alchemy, SAO), power (UE4) or final power (GTAO, bitmask)", screen_space,
      +[](AoParams& p) -> float& { return p.contrast; }, 0, kBig, true, "1.3"},
-    {"blur", "none|gaussian|bilateral, after the AO pass", kAll,
+    {"blur", "none|gaussian|bilateral, after the AO pass", every,
      +[](AoParams& p) -> Blur& { return p.blur; }, 0, 0, false, "gaussian"},
     {"level_weights", "MSSAO's five level intensities, e.g. \"1,0.5,0.3,0.3,0.3\"",
-     bit(Technique::kMssao),
+     only<Technique::kMssao>,
      +[](AoParams& p) -> std::array<float, 5>& { return p.mssao.level_weights; }, 0, kBig, false,
      "1,0.25,0,0,0.5"},
-    {"max_pixel_radius", "MSSAO's per-level kernel cap in pixels", bit(Technique::kMssao),
+    {"max_pixel_radius", "MSSAO's per-level kernel cap in pixels", only<Technique::kMssao>,
      +[](AoParams& p) -> float& { return p.mssao.max_pixel_radius; }, 1, 1024, false, "9"},
-    {"viewpoints", "PMI viewpoints: 12, 42, 162, 642 or 2562", bit(Technique::kPmi),
+    {"viewpoints", "PMI viewpoints: 12, 42, 162, 642 or 2562", only<Technique::kPmi>,
      +[](AoParams& p) -> int& { return p.pmi.viewpoints; }, 12, 2562, false, "42"},
-    {"pmi_resolution", "PMI item buffer width in pixels", bit(Technique::kPmi),
+    {"pmi_resolution", "PMI item buffer width in pixels", only<Technique::kPmi>,
      +[](AoParams& p) -> int& { return p.pmi.resolution; }, 16, 8192, false, "320"},
     {"importance_best", "PMI: the k best views share 99 % of p(V); 0 = projected area",
-     bit(Technique::kPmi), +[](AoParams& p) -> int& { return p.pmi.importance_best; }, 0, 2562,
+     only<Technique::kPmi>, +[](AoParams& p) -> int& { return p.pmi.importance_best; }, 0, 2562,
      false, "3"},
-    {"slices", "GTAO and bitmask slices per pixel", kSliced,
+    {"slices", "GTAO and bitmask slices per pixel", sliced,
      +[](AoParams& p) -> int& { return p.gtao.slices; }, 1, 64, false, "2"},
-    {"steps", "GTAO and bitmask steps per side of a slice", kSliced,
+    {"steps", "GTAO and bitmask steps per side of a slice", sliced,
      +[](AoParams& p) -> int& { return p.gtao.steps; }, 1, 64, false, "5"},
     {"falloff_range", "GTAO: share of the radius over which occluders fade out",
-     bit(Technique::kGtao), +[](AoParams& p) -> float& { return p.gtao.falloff_range; }, 0, 1, true,
-     "0.4"},
-    {"thin_occluder", "GTAO: thin-occluder compensation (0 = off)", bit(Technique::kGtao),
+     only<Technique::kGtao>, +[](AoParams& p) -> float& { return p.gtao.falloff_range; }, 0, 1,
+     true, "0.4"},
+    {"thin_occluder", "GTAO: thin-occluder compensation (0 = off)", only<Technique::kGtao>,
      +[](AoParams& p) -> float& { return p.gtao.thin_occluder; }, 0, 0.7, false, "0.3"},
     // Capped so the shader's squared lengths stay finite.
     {"thickness", "bitmask: assumed thickness of every occluder, scene units",
-     bit(Technique::kBitmask), +[](AoParams& p) -> float& { return p.bitmask.thickness; }, 0, 1e6,
+     only<Technique::kBitmask>, +[](AoParams& p) -> float& { return p.bitmask.thickness; }, 0, 1e6,
      false, "0.6"},
 };
 
@@ -121,7 +124,7 @@ const ParamSpec& param_spec(std::string_view key) {
       fmt::format("unknown parameter '{}' (known: {})", key, fmt::join(param_names(), ", ")));
 }
 
-bool applies(const ParamSpec& spec, Technique t) { return (spec.techniques & bit(t)) != 0; }
+bool applies(const ParamSpec& spec, Technique t) { return spec.reads(technique_info(t)); }
 
 std::vector<std::string_view> param_names() {
   std::vector<std::string_view> out;

@@ -21,7 +21,7 @@ using ParamValue = std::variant<int, float, std::string, std::vector<float>>;
 struct ParamSpec {
   std::string_view key;
   std::string_view doc;
-  unsigned techniques;  // bit 1 << Technique: the techniques whose passes read it
+  bool (*reads)(const TechniqueInfo&);  // whether a technique's pass reads it
   // Where it lives in AoParams.
   std::variant<int& (*)(AoParams&), float& (*)(AoParams&), Blur& (*)(AoParams&),
                std::array<float, 5>& (*)(AoParams&)>

@@ -20,13 +20,14 @@ namespace {
 // the paper's recommended 162 viewpoints at 1280x960.
 constexpr TechniqueInfo kTechniques[] = {
     {Technique::kAlchemy, "alchemy", "Alchemy AO (McGuire et al. 2011)", Space::kScreen,
+     Sampling::kTaps,
      [] {
        AoParams p;
        p.samples = 16, p.radius = 1, p.bias = 0.002f;  // beta: Unity URP's 0.002 per unit depth
        return p;
      },
      make_alchemy_pass},
-    {Technique::kSao, "sao", "Scalable AO (McGuire et al. 2012)", Space::kScreen,
+    {Technique::kSao, "sao", "Scalable AO (McGuire et al. 2012)", Space::kScreen, Sampling::kTaps,
      [] {
        AoParams p;
        p.samples = 8, p.radius = 10, p.bias = 0.012f;  // SAO::Settings bias, scene units
@@ -34,13 +35,14 @@ constexpr TechniqueInfo kTechniques[] = {
      },
      make_sao_pass},
     {Technique::kMssao, "mssao", "Multi-Scale AO (Hoang & Low 2012)", Space::kScreen,
+     Sampling::kTaps,
      [] {
        AoParams p;
        p.samples = 16, p.radius = 2, p.bias = 0.002f;
        return p;
      },
      make_mssao_pass},
-    {Technique::kUe4, "ue4", "UE4 AO (Mittring 2012)", Space::kScreen,
+    {Technique::kUe4, "ue4", "UE4 AO (Mittring 2012)", Space::kScreen, Sampling::kTaps,
      [] {
        AoParams p;
        // Published Intensity 0.5 and Power 2.0; bias is a minimum horizon sine.
@@ -49,7 +51,7 @@ constexpr TechniqueInfo kTechniques[] = {
      },
      make_ue4_pass},
     {Technique::kGtao, "gtao", "Ground-Truth AO (Jimenez et al. 2016), XeGTAO's High preset",
-     Space::kScreen,
+     Space::kScreen, Sampling::kSlices,
      [] {
        AoParams p;
        // XeGTAO: radius 0.5 (times its 1.457 multiplier in the shader), FinalValuePower 2.2.
@@ -59,6 +61,7 @@ constexpr TechniqueInfo kTechniques[] = {
      make_gtao_pass},
     {Technique::kBitmask, "bitmask",
      "visibility-bitmask AO (Therrien et al. 2023): GTAO's slices with thickness", Space::kScreen,
+     Sampling::kSlices,
      [] {
        AoParams p;
        // GTAO's High preset (3 slices x 3 steps) and radius, without XeGTAO's tuned final
@@ -68,7 +71,7 @@ constexpr TechniqueInfo kTechniques[] = {
      },
      make_bitmask_pass},
     {Technique::kPmi, "pmi", "viewpoint-based AO, polygonal mutual information (Gonzalez 2008)",
-     Space::kObject, [] { return AoParams{}; }, nullptr},
+     Space::kObject, Sampling::kNone, [] { return AoParams{}; }, nullptr},
 };
 
 }  // namespace

@@ -71,13 +71,17 @@ struct AoParams {
 class AoPass;
 
 enum class Space { kScreen, kObject };
+// How a screen-space estimator samples: s taps within the radius (with a bias), or GTAO's
+// slices and steps. Says which of the parameter table's shared rows it reads (params.cpp).
+enum class Sampling { kTaps, kSlices, kNone };
 
 struct TechniqueInfo {
   Technique id;
   std::string_view name;     // as suites and --technique spell it
   std::string_view summary;  // one line: what it is, after whom
   Space space;               // screen space: an AoPass over the G-buffer
-  AoParams (*defaults)();    // the published parameters
+  Sampling sampling;
+  AoParams (*defaults)();  // the published parameters
   // The screen-space pass; null for object-space techniques, which the Renderer runs itself.
   std::unique_ptr<AoPass> (*make_pass)();
 };
