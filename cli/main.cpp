@@ -5,6 +5,7 @@
 #include <csignal>
 #include <cstring>
 #include <exception>
+#include <filesystem>
 #include <string>
 
 #include "cli/commands.hpp"
@@ -58,6 +59,15 @@ int run_library_command(const LibraryCommand& command, int argc, char** argv) {
   std::string error;
   auto* entry = aosuite::sibling_symbol<int(int, char**)>(
       command.library, harness ? "aosuite_check_main" : "aosuite_gl_main", error);
+  if (!entry && !harness &&
+      !std::filesystem::exists(std::filesystem::read_symlink("/proc/self/exe").parent_path() /
+                               command.library)) {
+    fmt::print(stderr,
+               "aosuite {}: this aosuite was built without the AO bench (-DAOSUITE_RENDERER=OFF); "
+               "compare, check, bless and report work on images\n",
+               command.name);
+    return aosuite::cli::kExitError;
+  }
   if (!entry) {
     fmt::print(stderr, "aosuite: cannot load the {} command: {}\n", command.name, error);
     return aosuite::cli::kExitError;

@@ -211,6 +211,17 @@ fs::path inside_path(const Reader& r, const toml::node& at, const std::string& t
   return p;
 }
 
+// f(), which may load the registered kinds: a kind that cannot be loaded (a build without the
+// AO bench) is an error at `at`, naming the suite file.
+template <typename F>
+auto loading_kinds(const Reader& r, const toml::source_region& at, F f) {
+  try {
+    return f();
+  } catch (const std::runtime_error& e) {
+    r.fail(at, e.what());
+  }
+}
+
 // Refuses a key of `t` that is neither shared nor in `own`, loading the registered kinds
 // first if one is unknown (it may be theirs).
 void only_known_keys(const Reader& r, const toml::table& t, std::span<const std::string_view> own,
@@ -224,7 +235,7 @@ void only_known_keys(const Reader& r, const toml::table& t, std::span<const std:
   std::vector<std::string_view> keys = known();
   const bool unknown = std::ranges::any_of(
       t, [&](const auto& kv) { return std::ranges::find(keys, kv.first.str()) == keys.end(); });
-  if (unknown && load_kinds()) keys = known();
+  if (unknown && loading_kinds(r, t.source(), load_kinds)) keys = known();
   r.only_keys(t, keys);
 }
 
@@ -369,7 +380,7 @@ Suite load_suite(const fs::path& file) {
     if (t.get("command") || t.get("files")) {
       made.push_back(image_case(r, dir, t, defaults));
     } else {
-      const CaseKind* kind = kind_for(t);
+      const CaseKind* kind = loading_kinds(r, t.source(), [&] { return kind_for(t); });
       if (!kind) {
         std::string kinds;
         for (const CaseKind* k : harness::kinds()) kinds += fmt::format("{} = ..., ", k->key());
