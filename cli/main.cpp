@@ -60,8 +60,7 @@ int run_library_command(const LibraryCommand& command, int argc, char** argv) {
   auto* entry = aosuite::sibling_symbol<int(int, char**)>(
       command.library, harness ? "aosuite_check_main" : "aosuite_gl_main", error);
   if (!entry && !harness &&
-      !std::filesystem::exists(std::filesystem::read_symlink("/proc/self/exe").parent_path() /
-                               command.library)) {
+      !std::filesystem::exists(aosuite::sibling_library_path(command.library))) {
     fmt::print(stderr,
                "aosuite {}: this aosuite was built without the AO bench (-DAOSUITE_RENDERER=OFF); "
                "compare, check, bless and report work on images\n",

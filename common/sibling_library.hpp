@@ -1,21 +1,39 @@
-// Entry points of the libraries that lie beside the `aosuite` executable and are opened only
-// when needed: libaosuite_gl.so (OpenGL commands, by the launcher) and libaosuite_exr.so
-// (OpenImageIO, by write_exr). Header-only: the launcher links neither library.
+// Entry points of the libraries that lie beside the `aosuite` executable (in a build folder) or
+// in ../lib/aosuite from it (installed), opened only when needed: libaosuite_check.so and
+// libaosuite_gl.so (commands, by the launcher), libaosuite_exr.so (OpenEXR, by write_exr),
+// libaosuite_oiio.so (other formats). Header-only: the launcher links none of them.
 #pragma once
 
 #include <dlfcn.h>
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 namespace aosuite {
 
-// `symbol` of `library` in the executable's directory, as a function of type Fn; nullptr,
-// with dlerror()'s reason (it names the file or the symbol) in `error`, when either is missing.
+// Where `library` is: beside the executable, else in ../lib/aosuite from it (where
+// `cmake --install` puts it), else in aosuite/ beside the shared library holding this code
+// (libaosuite.so, find_package(aosuite), in another program). The executable's own folder is
+// tried first, so a build folder never picks up an installed copy.
+inline std::filesystem::path sibling_library_path(const char* library) {
+  namespace fs = std::filesystem;
+  const fs::path bin = fs::read_symlink("/proc/self/exe").parent_path();
+  std::vector<fs::path> places{bin / library, bin / ".." / "lib" / "aosuite" / library};
+  Dl_info self{};
+  if (dladdr(reinterpret_cast<const void*>(&sibling_library_path), &self) && self.dli_fname)
+    places.push_back(fs::path(self.dli_fname).parent_path() / "aosuite" / library);
+  std::error_code ec;
+  for (const fs::path& p : places)
+    if (fs::exists(p, ec)) return p.lexically_normal();
+  return places.front();
+}
+
+// `symbol` of `library` (sibling_library_path), as a function of type Fn; nullptr, with
+// dlerror()'s reason (it names the file or the symbol) in `error`, when either is missing.
 template <class Fn>
 Fn* sibling_symbol(const char* library, const char* symbol, std::string& error) {
-  const std::filesystem::path path =
-      std::filesystem::read_symlink("/proc/self/exe").parent_path() / library;
+  const std::filesystem::path path = sibling_library_path(library);
   void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
   void* found = handle ? dlsym(handle, symbol) : nullptr;
   if (!found) error = dlerror();

@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "common/cache_dir.hpp"
 #include "common/content_hash.hpp"
 #include "compare/image_io.hpp"
 
@@ -67,7 +68,7 @@ void add_mat(ContentHash& h, const cv::Mat& m) {
 
 fs::path default_cache_dir() {
   if (const char* env = std::getenv("AOSUITE_REFERENCE_CACHE"); env && *env) return env;
-  return fs::path(AOSUITE_CACHE_DIR) / "reference";
+  return cache_dir(AOSUITE_CACHE_DIR) / "reference";
 }
 
 std::uint64_t default_cache_limit() {

@@ -10,11 +10,12 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <stdexcept>
 
+#include "common/cache_dir.hpp"
 #include "common/file_io.hpp"
 #include "renderer/scene/mesh_io.hpp"
 
-#ifndef AOSUITE_ASSET_DIR
-#error "AOSUITE_ASSET_DIR (the repository's .cache/assets) must be defined by the build"
+#ifndef AOSUITE_CACHE_DIR
+#error "AOSUITE_CACHE_DIR (the repository's .cache) must be defined by the build"
 #endif
 
 namespace aosuite::renderer {
@@ -297,7 +298,8 @@ std::vector<std::string> downloadable_scene_names() { return builtin_names(true)
 std::filesystem::path downloadable_scene_file(std::string_view name) {
   if (name != "dragon") throw std::invalid_argument(fmt::format("'{}' needs no download", name));
   const char* env = std::getenv("AOSUITE_ASSETS");
-  const std::filesystem::path dir = env && *env ? env : AOSUITE_ASSET_DIR;
+  const std::filesystem::path dir =
+      env && *env ? std::filesystem::path(env) : cache_dir(AOSUITE_CACHE_DIR) / "assets";
   return dir / kDragonFile;
 }
 

@@ -23,6 +23,8 @@ LAYERS = {
     "harness": {"common", "compare"},
     # The AO bench on top of the tool: rendered cases, its report section.
     "ao": {"common", "compare", "renderer", "reference", "harness"},
+    # The C++ library (include/aosuite/aosuite.hpp): the harness's verdict for a renderer's tests.
+    "api": {"common", "compare", "harness"},
     "cli": {"common", "compare", "renderer", "reference", "harness", "ao"},
 }
 INCLUDE = re.compile(r'#include "([\w/]+)\.[ch]pp"')
