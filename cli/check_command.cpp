@@ -111,11 +111,16 @@ void print_progress(const hs::CaseResult& r, int done, int total) {
   std::string detail;
   for (const hs::ImageVerdict& v : r.images) {
     detail += "  " + v.image;
-    // Resemble's mismatch where its gate holds (or nothing else was measured), then each gate.
-    if (r.tolerance.resemble || v.outcomes.empty())
-      detail += fmt::format(" {}%", v.mismatch_text.empty() ? "-" : v.mismatch_text);
-    for (const metric::Outcome& o : v.outcomes)
-      detail += fmt::format(" {} {} {:.4g}", o.metric, o.stat, o.value);
+    // Resemble's mismatch and largest channel difference where its gate holds (or nothing else
+    // was measured), then each gate, named by its region; nothing where nothing was measured.
+    if ((r.tolerance.resemble || v.outcomes.empty()) && !v.mismatch_text.empty()) {
+      detail += fmt::format(" {}%", v.mismatch_text);
+      if (!v.identical) detail += fmt::format(" max Δ {}", v.max_channel_delta);
+    }
+    for (const metric::Outcome& o : v.outcomes) {
+      detail += fmt::format(" {}{} {} {:.4g}", o.region.empty() ? "" : o.region + ": ", o.metric,
+                            o.stat, o.value);
+    }
     if (v.identical) detail += " (identical)";
   }
   if (r.status != hs::Status::kPass && !r.message.empty()) detail += "  " + r.message;
@@ -196,12 +201,14 @@ int finish(const hs::RunResults& run, const fs::path& report_dir, const std::str
   if (!run.cases.empty() && run.cases.front().kind == "folder") {
     int deleted = 0;
     for (const hs::CaseResult& c : run.cases) deleted += c.message.starts_with("deleted:");
-    fmt::print("{} images: {} unchanged, {} changed, {} new, {} deleted, {} errors{}. Report: {}\n",
-               run.cases.size(), n.pass, n.fail - deleted, n.fresh, deleted, n.error, flaky,
-               hs::printable(report));
+    fmt::print(
+        "{} image{}: {} unchanged, {} changed, {} new, {} deleted, {} errors{}. Report: {}\n",
+        run.cases.size(), run.cases.size() == 1 ? "" : "s", n.pass, n.fail - deleted, n.fresh,
+        deleted, n.error, flaky, hs::printable(report));
   } else {
-    fmt::print("{} cases: {} passed, {} failed, {} new, {} errors{}. Report: {}\n",
-               run.cases.size(), n.pass, n.fail, n.fresh, n.error, flaky, hs::printable(report));
+    fmt::print("{} case{}: {} passed, {} failed, {} new, {} errors{}. Report: {}\n",
+               run.cases.size(), run.cases.size() == 1 ? "" : "s", n.pass, n.fail, n.fresh, n.error,
+               flaky, hs::printable(report));
   }
   for (const hs::CaseResult& c : run.cases) {
     if (c.bless_command.empty()) continue;

@@ -349,8 +349,8 @@ void add_compare_command(CLI::App& app, int& rc) {
   auto args = std::make_shared<CompareArgs>();
   CLI::App* cmd = app.add_subcommand(
       "compare",
-      "Compare two PNGs exactly as Resemble.js 5.0.0 does, and measure FLIP, SSIM, RMSE or PSNR\n"
-      "on PNG (8- or 16-bit) and EXR images (--metric).\n"
+      "Compare two images exactly as Resemble.js 5.0.0 does, and measure FLIP, SSIM, RMSE or\n"
+      "PSNR (--metric) at the images' full precision (8- or 16-bit, float).\n"
       "Exit status: 0 same (mismatch <= --threshold and same size, every --gate holds),\n"
       "1 different, 2 error. Metrics without a --gate are measured, not judged.");
   cmd->add_option("a", args->a, "first image (PNG, EXR, JPEG, TIFF, WebP, HDR, TGA, BMP)");

@@ -322,6 +322,13 @@ void refuse_links_below(const fs::path& root, const fs::path& file) {
   }
 }
 
+// Where a case's image is accepted: folder mode's expected file, else its golden (variant).
+fs::path bless_target(const Suite& suite, const Case& c, const std::string& image,
+                      const std::string& platform, const std::string& tag) {
+  if (c.source && !c.source->golden_file.empty()) return c.source->golden_file;
+  return golden_path(suite.goldens / c.id, image, ext_of(c, image), platform, tag);
+}
+
 // The goldens accepted for one image: folder mode's one expected file, else the goldens folder.
 std::vector<fs::path> goldens_of(const Suite& suite, const Case& c, const std::string& image,
                                  const std::string& platform) {
@@ -364,6 +371,8 @@ void judge_case(const Suite& suite, const Case& c, const std::string& platform, 
     const std::string ext = ext_of(c, name);
     ImageVerdict v = judge(name, images.bytes.at(name), pixels(images, c, name, case_dir),
                            goldens[i], c.tolerance, true, counted ? &*counted : nullptr);
+    if (v.status == Status::kNew)
+      v.message += " at " + printable(bless_target(suite, c, name, "", "").string());
     const bool show = v.status == Status::kFail || o.diff_all;
     if (!v.diff.empty() && show) {
       write_png_rgba8(case_dir / ("diff_" + name + ".png"), v.diff);
@@ -548,13 +557,6 @@ RunResults check(const Suite& suite, const RunOptions& o) {
 }
 
 namespace {
-
-// Where a case's image is accepted: folder mode's expected file, else its golden (variant).
-fs::path bless_target(const Suite& suite, const Case& c, const std::string& image,
-                      const std::string& platform, const std::string& tag) {
-  if (c.source && !c.source->golden_file.empty()) return c.source->golden_file;
-  return golden_path(suite.goldens / c.id, image, ext_of(c, image), platform, tag);
-}
 
 void write_case_goldens(const Suite& suite, const Case& c, const std::string& platform,
                         const std::string& tag, const Rendered& images, CaseResult& r) {

@@ -7,6 +7,7 @@
 #include <set>
 #include <stdexcept>
 
+#include "common/file_io.hpp"
 #include "common/toml_reader.hpp"
 #include "compare/picture.hpp"
 #include "harness/case_kind.hpp"
@@ -338,6 +339,11 @@ Case image_case(const Reader& r, const fs::path& dir, const toml::table& t, Comm
 
 Suite load_suite(const fs::path& file) {
   toml::table root;
+  std::error_code ec;
+  if (!fs::is_regular_file(file, ec)) {
+    throw FileError(file.string() +
+                    (fs::exists(file, ec) ? ": not a regular file" : ": no such suite file"));
+  }
   try {
     root = toml::parse_file(file.string());
   } catch (const toml::parse_error& e) {

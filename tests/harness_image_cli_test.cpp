@@ -127,6 +127,28 @@ TEST_F(ImageCases, AnImageOnlyRunMapsNoRendererLibrary) {
     EXPECT_NE(loaded.find(lib), std::string::npos) << lib << "\n" << loaded;
 }
 
+// Messages say where they looked: a missing suite file by name, a NEW case by the golden it
+// looked for (a suite's goldens folder, or folder mode's expected file).
+TEST_F(ImageCases, MessagesNameTheFilesTheyAreAbout) {
+  test::Outcome r = aosuite("check nope.toml");
+  EXPECT_EQ(r.rc, 2);
+  EXPECT_NE(r.err.find("nope.toml: no such suite file"), std::string::npos) << r.err;
+  r = aosuite("check s/t.toml");
+  EXPECT_EQ(r.rc, 1);
+  EXPECT_NE(r.out.find("no golden yet at goldens/t/chart/chart.png"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("1 case: 0 passed, 0 failed, 1 new"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("-%"), std::string::npos) << r.out;  // nothing measured, nothing shown
+  ASSERT_EQ(aosuite("bless s/t.toml").rc, 0);
+  std::ofstream(dir_ / "s" / "colour.txt") << "green";
+  r = aosuite("check s/t.toml");
+  EXPECT_NE(r.out.find("chart 50.00% max Δ 255"), std::string::npos) << r.out;  // how far off
+  fs::create_directories(dir_ / "actual");
+  fs::create_directories(dir_ / "expected");
+  fs::copy_file(dir_ / "s" / "red.png", dir_ / "actual" / "x.png");
+  r = aosuite("check --actual actual --expected expected");
+  EXPECT_NE(r.out.find("no golden yet at expected/x.png"), std::string::npos) << r.out;
+}
+
 // The loop a user runs: NEW, approve, PASS (reused), a changed input FAILs with a report, the
 // report's image is approved without running the command again, PASS.
 TEST_F(ImageCases, ACommandsImagesPassFailAndAreApprovedFromTheReport) {
@@ -378,7 +400,7 @@ TEST_F(ImageCases, FolderModeFollowsNoLinkAndSaysWhatItSkipped) {
   std::ofstream(dir_ / "actual" / "notes.txt") << "not an image";
   test::Outcome r = aosuite("check --actual actual --expected expected");
   EXPECT_EQ(r.rc, 0) << r.out << r.err;
-  EXPECT_NE(r.out.find("1 images: 1 unchanged"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("1 image: 1 unchanged"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("skipped 5 files: "), std::string::npos) << r.out;
   for (const char* said :
        {"actual/loop.png (a symbolic link (not followed))", "actual/zero.png (a symbolic link",
