@@ -264,6 +264,16 @@ void print_human(const std::string& a, const std::string& b, const rs::Result& r
   fmt::print(" -> {}\n", pass ? "same" : "different");
 }
 
+// With gates, the JSON says what the exit status says: "verdict" ("same" or "different") and
+// the gates that do not hold. Without, it is Resemble.js's own, key for key.
+void add_verdict(const MetricPlan& plan, bool pass, const MetricRun& m,
+                 nlohmann::ordered_json& out) {
+  if (std::ranges::none_of(plan.metrics, [](const metric::Gates& g) { return !g.limits.empty(); }))
+    return;
+  out["verdict"] = pass ? "same" : "different";
+  out["failed_gates"] = m.failed;
+}
+
 // Metrics first: their errors (sizes, kinds) come before Resemble writes its diff image.
 int run_single(const CompareArgs& args) {
   const MetricPlan plan = plan_metrics(args.metrics, args.gates, args.heatmap);
@@ -278,7 +288,9 @@ int run_single(const CompareArgs& args) {
   if (!plan.heatmap.empty()) write_png_rgba8(plan.heatmap, heatmap);
   const bool pass = (!r || passes(*r, threshold)) && m.failed.empty();
   if (args.json) {
-    fmt::print("{}\n", r ? rs::result_json(*r, m.json.empty() ? nullptr : m.json) : m.json.dump());
+    nlohmann::ordered_json extra = m.json;
+    add_verdict(plan, pass, m, extra);
+    fmt::print("{}\n", r ? rs::result_json(*r, extra.empty() ? nullptr : extra) : extra.dump());
     return pass ? kExitSame : kExitDifferent;
   }
   if (r) print_human(args.a, args.b, *r, passes(*r, threshold));
@@ -331,9 +343,10 @@ int run_batch(const CompareArgs& args) {
       for (const auto& [key, value] : m.json.items()) extra[key] = value;
       std::optional<rs::Result> r;
       if (plan.resemble) r = compare_files(a, b, o, diff, budget);
+      const bool pass = (!r || passes(*r, threshold)) && m.failed.empty();
+      add_verdict(plan, pass, m, extra);
       fmt::print("{}\n", r ? rs::result_json(*r, extra) : extra.dump());
-      if ((r && !passes(*r, threshold)) || !m.failed.empty())
-        worst = std::max(worst, kExitDifferent);
+      if (!pass) worst = std::max(worst, kExitDifferent);
     } catch (const std::exception& e) {
       extra["error"] = fmt::format("{}: line {}: {}", args.batch, line_no, e.what());
       fmt::print("{}\n", extra.dump());

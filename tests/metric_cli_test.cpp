@@ -201,6 +201,18 @@ TEST(MetricCli, GatesDecideTheExitStatusAndTheHeatmapIsWritten) {
   const cv::Mat heat = read_png_rgba8(dir / "heat.png");
   ASSERT_EQ(heat.size(), a.size());
   EXPECT_NE(heat.at<cv::Vec4b>(12, 12), heat.at<cv::Vec4b>(30, 40)) << "the square shows";
+  // --json says what the exit status says, and which gate failed; without gates, no verdict.
+  const Outcome json_over =
+      compare(dir, ab + " --gate flip.max_mean=" + std::to_string(mean * 0.99) + " --json");
+  EXPECT_EQ(json_over.rc, 1);
+  const auto verdict = nlohmann::json::parse(json_over.out);
+  EXPECT_EQ(verdict.at("verdict"), "different") << json_over.out;
+  ASSERT_EQ(verdict.at("failed_gates").size(), 1u) << json_over.out;
+  EXPECT_NE(verdict.at("failed_gates")[0].get<std::string>().find("max_mean"), std::string::npos);
+  const auto json_within = nlohmann::json::parse(compare(dir, ab + within + " --json").out);
+  EXPECT_EQ(json_within.at("verdict"), "same");
+  EXPECT_TRUE(json_within.at("failed_gates").empty());
+  EXPECT_FALSE(nlohmann::json::parse(measured.out).contains("verdict"));
   EXPECT_EQ(compare(dir, ab + " --metric ssim --gate ssim.min=0.5").rc, 0);
   EXPECT_EQ(compare(dir, ab + " --metric ssim --gate ssim.min=0.9999").rc, 1);
   // With Resemble too: one object, Resemble's keys first, then one key per metric.
