@@ -17,7 +17,7 @@ std::map<std::string, std::string> command_placeholders(const Case& k) {
   std::map<std::string, std::string> v;
   for (const auto& [key, value] : k.param_overrides) v[key] = value;
   v["id"] = k.id, v["name"] = k.id, v["suite_dir"] = k.source->dir.string();
-  v["width"] = std::to_string(k.width), v["height"] = std::to_string(k.height);
+  if (k.width > 0) v["width"] = std::to_string(k.width), v["height"] = std::to_string(k.height);
   return v;
 }
 

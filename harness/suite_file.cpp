@@ -170,7 +170,8 @@ void read_tolerance(const Reader& r, const fs::path& dir, const toml::node& n, T
 
 // What [defaults] and every [[case]] may say, whatever makes its images.
 struct Common {
-  int width = 320, height = 180;
+  int width = 320, height = 180;  // a rendered scene's size unless the suite says
+  bool width_given = false, height_given = false;
   std::map<std::string, std::string> params;
   std::map<std::string, toml::source_region> param_at;
   nlohmann::json values = nlohmann::json::object();
@@ -181,8 +182,14 @@ constexpr std::string_view kImageCaseKeys[] = {"name",   "command", "outputs",
                                                "inputs", "timeout", "files"};
 
 void read_common(const Reader& r, const fs::path& dir, const toml::table& t, Common& c) {
-  if (const toml::node* n = t.get("width")) c.width = r.integer(*n, "width", 1, 16384);
-  if (const toml::node* n = t.get("height")) c.height = r.integer(*n, "height", 1, 16384);
+  if (const toml::node* n = t.get("width")) {
+    c.width = r.integer(*n, "width", 1, 16384);
+    c.width_given = true;
+  }
+  if (const toml::node* n = t.get("height")) {
+    c.height = r.integer(*n, "height", 1, 16384);
+    c.height_given = true;
+  }
   if (const toml::node* n = t.get("params")) read_params(r, *n, c.params, c.param_at, c.values);
   if (const toml::node* n = t.get("tolerance")) read_tolerance(r, dir, *n, c.tolerance);
 }
@@ -258,7 +265,15 @@ Case image_case(const Reader& r, const fs::path& dir, const toml::table& t, Comm
   }
   auto src = std::make_shared<ImageSource>();
   src->dir = fs::absolute(dir).lexically_normal();
-  k.width = c.width, k.height = c.height, k.tolerance = c.tolerance;
+  // An image case has the size of its images; width and height are only what the suite tells
+  // its command ({width}, {height}), both or neither: never a default standing in for one.
+  if (c.width_given != c.height_given) {
+    r.fail(t.source(),
+           "an image case gives width and height together (its command reads them as "
+           "{width} and {height}), or neither");
+  }
+  if (c.width_given) k.width = c.width, k.height = c.height;
+  k.tolerance = c.tolerance;
   if (k.tolerance.foreground_only) {
     r.fail(t.source(),
            "foreground_only needs a rendered scene (its G-buffer says which pixels "

@@ -76,6 +76,7 @@ TEST_F(SuiteFile, ImageCasesNameTheirImagesAndKeepTypedParams) {
   const Suite s = load_suite(write(R"(
 [defaults]
 width = 64
+height = 48
 params = { quality = 3 }
 [[case]]
 name = "chart"
@@ -103,7 +104,8 @@ files = ["shots/photo.png"]
   v["out"] = "/o";
   EXPECT_EQ(expand_placeholders(c.source->command[6], v, false), "3{x}");
   EXPECT_EQ(expand_placeholders("{label}", v, true), "'a b'");
-  EXPECT_EQ(expand_placeholders("{width}x{height}", v, false), "64x180");
+  EXPECT_EQ(expand_placeholders("{width}x{height}", v, false), "64x48");
+  EXPECT_EQ(s.cases[1].width, 64);
   EXPECT_THROW(expand_placeholders("{nope}", v, false), std::invalid_argument);
   EXPECT_THROW(expand_placeholders("{out", v, false), std::invalid_argument);
   EXPECT_EQ(s.cases[1].images, (std::vector<std::string>{"photo"}));
@@ -136,6 +138,15 @@ TEST_F(SuiteFile, MalformedImageCasesNameFileLineAndReason) {
       std::string::npos);
   // Without a registered kind, a case that is neither files nor a command names what it needs.
   EXPECT_NE(error_of("[[case]]\nscene = \"corner\"\n").find("s.toml:1:1: a case needs command"),
+            std::string::npos);
+  // Width and height are what the command is told: both or neither, never half a default.
+  EXPECT_NE(error_of(head + "files = [\"x.png\"]\nwidth = 64\n")
+                .find("s.toml:1:1: an image case "
+                      "gives width and height "
+                      "together"),
+            std::string::npos);
+  EXPECT_NE(error_of(head + "command = [\"a\", \"{width}\"]\noutputs = [\"x.png\"]\n")
+                .find("unknown placeholder '{width}'"),
             std::string::npos);
   EXPECT_NE(error_of(head + "files = [\"x.png\"]\ntimeout = 3\n").find("belongs to a command case"),
             std::string::npos);
