@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <optional>
 #include <thread>
 
@@ -148,6 +149,24 @@ TEST(Renderer, BackgroundIsOneAndNoDarkBorderBand) {
   }
 }
 
+// A built-in scene scaled about the origin by `scale`, with each view's near plane at
+// `near_ratio` of the scale (scale_scene scales positions, eyes and targets).
+Scene scaled_scene(const std::string& name, float scale, float near_ratio) {
+  Scene scene = builtin_scene(name);
+  scale_scene(scene, scale);
+  for (View& v : scene.views) v.near = near_ratio * scale;
+  return scene;
+}
+
+// settings() at radius 0.5 with every parameter in scene units scaled with the scene: the
+// radius, and bitmask's thickness. SAO's bias is a share of the radius and the others' biases
+// are per unit depth or sines, so they stay.
+RenderSettings scaled_settings(Technique t, float scale, Blur blur = Blur::kNone) {
+  RenderSettings rs = settings(t, 0.5f * scale, blur);
+  rs.params.bitmask.thickness *= scale;
+  return rs;
+}
+
 // The stress matrix: every technique at scene scales 1e-3..1e4 and near planes from 1e-6
 // to 1e-1 of the scene scale (near/scene-depth ratios ~1e-7..1e-2; the far plane is at
 // infinity), on the plane and the corner. The renderer throws if any AO value is NaN, Inf
@@ -156,14 +175,9 @@ TEST(RendererStress, ScalesAndNearPlanes) {
   for (float scale : {1e-3f, 1.0f, 1e4f}) {
     for (float near : {1e-6f, 1e-1f}) {
       for (Technique t : kAll) {
-        Scene plane = builtin_scene("plane"), corner = builtin_scene("corner");
-        scale_scene(plane, scale);
-        scale_scene(corner, scale);
-        for (Scene* s : {&plane, &corner}) {
-          for (View& v : s->views) v.near = near * scale;
-        }
-        RenderSettings rs = settings(t, 0.5f * scale);
-        if (t == Technique::kSao) rs.params.bias *= scale;  // SAO's bias is in scene units
+        const Scene plane = scaled_scene("plane", scale, near);
+        const Scene corner = scaled_scene("corner", scale, near);
+        const RenderSettings rs = scaled_settings(t, scale);
         const std::string what = std::string(technique_name(t)) + " scale " +
                                  std::to_string(scale) + " near " + std::to_string(near);
         Stats open, crease;
@@ -172,6 +186,70 @@ TEST(RendererStress, ScalesAndNearPlanes) {
         EXPECT_GE(open.mean, 0.97) << what;
         EXPECT_LT(crease.mean, open.mean) << what;
       }
+    }
+  }
+}
+
+// The same matrix's stronger promise: the AO does not depend on the scene's units. Positions,
+// near planes, radius and thickness scaled together must give scale 1's float AO, unblurred
+// and through the bilateral blur (whose depth weight is relative), on views with creases.
+// - At 2^-17 and 2^17 (7.6e-6 and 1.3e5) every scaling is exact in float, so a scale-free
+//   pipeline gives the same AO at every pixel; tolerance 1e-4 on the AO term leaves room for a
+//   GPU whose approximate functions are not exactly equivariant (llvmpipe: 0 difference). An
+//   absolute constant left in scene units (SAO's bias before it became a share of the radius:
+//   no occlusion at all at 1e-5) moves the AO by 1e-2 and more.
+// - At 1e-5 and 1e5 each scaled position rounds differently (float's 6e-8 relative step):
+//   smooth terms move by < 1e-4, but a tap that lands on a hard threshold (UE4's and
+//   bitmask's cut at the radius or a sector edge, the floor to a texel) can flip and move its
+//   pixel by ~1e-2, which the blur spreads to its neighbours. So there the mean over geometry
+//   pixels must agree to 1e-5 and 99 % of pixels to 1e-4.
+TEST(RendererStress, SameAoAtEveryScale) {
+  constexpr double kTolerance = 1e-4, kMeanTolerance = 1e-5, kShareWithin = 0.99;
+  const std::pair<const char*, std::size_t> views[] = {
+      {"corner", 0}, {"corner", 1}, {"village", 0}};
+  const float exact[] = {std::ldexp(1.0f, -17), std::ldexp(1.0f, 17)};
+  const float decimal[] = {1e-5f, 1e5f};
+  for (Technique t : kAll) {
+    for (Blur blur : {Blur::kNone, Blur::kBilateral}) {
+      double worst_exact = 0, worst_decimal = 0, worst_mean = 0, worst_share = 1;
+      for (const auto& [name, view] : views) {
+        const Images one = render(scaled_scene(name, 1, 0.01f), view, scaled_settings(t, 1, blur));
+        const Stats at_one = geometry_stats(one);
+        ASSERT_LT(at_one.min, 0.9) << name << " " << technique_name(t) << ": nothing occluded";
+        for (float scale : {exact[0], exact[1], decimal[0], decimal[1]}) {
+          const bool is_exact = scale == exact[0] || scale == exact[1];
+          const std::string what = std::string(technique_name(t)) + " " +
+                                   std::string(blur_name(blur)) + " " + name + " " +
+                                   std::to_string(view) + " scale " + std::to_string(scale);
+          Images scaled;
+          ASSERT_NO_THROW(scaled = render(scaled_scene(name, scale, 0.01f), view,
+                                          scaled_settings(t, scale, blur)))
+              << what;
+          const cv::Mat geometry = one.depth > 0;
+          ASSERT_EQ(cv::countNonZero(geometry != (scaled.depth > 0)), 0) << what;
+          cv::Mat diff;
+          cv::absdiff(one.ao, scaled.ao, diff);
+          const double max_diff = cv::norm(diff, cv::NORM_INF);
+          if (is_exact) {
+            EXPECT_LE(max_diff, kTolerance) << what;
+            worst_exact = std::max(worst_exact, max_diff);
+            continue;
+          }
+          const double mean_diff = std::abs(geometry_stats(scaled).mean - at_one.mean);
+          const double within = 1 - static_cast<double>(cv::countNonZero(diff > kTolerance)) /
+                                        cv::countNonZero(geometry);
+          EXPECT_LE(mean_diff, kMeanTolerance) << what;
+          EXPECT_GE(within, kShareWithin) << what;
+          worst_decimal = std::max(worst_decimal, max_diff);
+          worst_mean = std::max(worst_mean, mean_diff);
+          worst_share = std::min(worst_share, within);
+        }
+      }
+      std::printf(
+          "[ measured ] %-8s %-9s max |dAO| exact scales %.3g; 1e-5, 1e5: max %.3g, mean %.3g, "
+          "%.2f %% of pixels within 1e-4\n",
+          std::string(technique_name(t)).c_str(), std::string(blur_name(blur)).c_str(), worst_exact,
+          worst_decimal, worst_mean, 100 * worst_share);
     }
   }
 }
