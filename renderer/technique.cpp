@@ -30,7 +30,9 @@ constexpr TechniqueInfo kTechniques[] = {
     {Technique::kSao, "sao", "Scalable AO (McGuire et al. 2012)", Space::kScreen, Sampling::kTaps,
      [] {
        AoParams p;
-       p.samples = 8, p.radius = 10, p.bias = 0.012f;  // SAO::Settings bias, scene units
+       // SAO::Settings' bias 0.012; sao.frag subtracts bias * radius, so this is the published
+       // 0.012 scene units at r = 1 and the same share of the radius at any scene scale.
+       p.samples = 8, p.radius = 10, p.bias = 0.012f;
        return p;
      },
      make_sao_pass},

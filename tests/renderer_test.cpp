@@ -7,11 +7,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <optional>
 #include <thread>
+#include <vector>
 
 #include "renderer/params.hpp"
 #include "renderer/passes/ao_uniforms.hpp"
+#include "renderer/passes/blur_pass.hpp"
 #include "renderer/passes/shader_library.hpp"
 #include "renderer/scene/scene.hpp"
 
@@ -148,6 +151,24 @@ TEST(Renderer, BackgroundIsOneAndNoDarkBorderBand) {
   }
 }
 
+// A built-in scene scaled about the origin by `scale`, with each view's near plane at
+// `near_ratio` of the scale (scale_scene scales positions, eyes and targets).
+Scene scaled_scene(const std::string& name, float scale, float near_ratio) {
+  Scene scene = builtin_scene(name);
+  scale_scene(scene, scale);
+  for (View& v : scene.views) v.near = near_ratio * scale;
+  return scene;
+}
+
+// settings() at radius 0.5 with every parameter in scene units scaled with the scene: the
+// radius, and bitmask's thickness. SAO's bias is a share of the radius and the others' biases
+// are per unit depth or sines, so they stay.
+RenderSettings scaled_settings(Technique t, float scale, Blur blur = Blur::kNone) {
+  RenderSettings rs = settings(t, 0.5f * scale, blur);
+  rs.params.bitmask.thickness *= scale;
+  return rs;
+}
+
 // The stress matrix: every technique at scene scales 1e-3..1e4 and near planes from 1e-6
 // to 1e-1 of the scene scale (near/scene-depth ratios ~1e-7..1e-2; the far plane is at
 // infinity), on the plane and the corner. The renderer throws if any AO value is NaN, Inf
@@ -156,14 +177,9 @@ TEST(RendererStress, ScalesAndNearPlanes) {
   for (float scale : {1e-3f, 1.0f, 1e4f}) {
     for (float near : {1e-6f, 1e-1f}) {
       for (Technique t : kAll) {
-        Scene plane = builtin_scene("plane"), corner = builtin_scene("corner");
-        scale_scene(plane, scale);
-        scale_scene(corner, scale);
-        for (Scene* s : {&plane, &corner}) {
-          for (View& v : s->views) v.near = near * scale;
-        }
-        RenderSettings rs = settings(t, 0.5f * scale);
-        if (t == Technique::kSao) rs.params.bias *= scale;  // SAO's bias is in scene units
+        const Scene plane = scaled_scene("plane", scale, near);
+        const Scene corner = scaled_scene("corner", scale, near);
+        const RenderSettings rs = scaled_settings(t, scale);
         const std::string what = std::string(technique_name(t)) + " scale " +
                                  std::to_string(scale) + " near " + std::to_string(near);
         Stats open, crease;
@@ -172,6 +188,70 @@ TEST(RendererStress, ScalesAndNearPlanes) {
         EXPECT_GE(open.mean, 0.97) << what;
         EXPECT_LT(crease.mean, open.mean) << what;
       }
+    }
+  }
+}
+
+// The same matrix's stronger promise: the AO does not depend on the scene's units. Positions,
+// near planes, radius and thickness scaled together must give scale 1's float AO, unblurred
+// and through the bilateral blur (whose depth weight is relative), on views with creases.
+// - At 2^-17 and 2^17 (7.6e-6 and 1.3e5) every scaling is exact in float, so a scale-free
+//   pipeline gives the same AO at every pixel; tolerance 1e-4 on the AO term leaves room for a
+//   GPU whose approximate functions are not exactly equivariant (llvmpipe: 0 difference). An
+//   absolute constant left in scene units (SAO's bias before it became a share of the radius:
+//   no occlusion at all at 1e-5) moves the AO by 1e-2 and more.
+// - At 1e-5 and 1e5 each scaled position rounds differently (float's 6e-8 relative step):
+//   smooth terms move by < 1e-4, but a tap that lands on a hard threshold (UE4's and
+//   bitmask's cut at the radius or a sector edge, the floor to a texel) can flip and move its
+//   pixel by ~1e-2, which the blur spreads to its neighbours. So there the mean over geometry
+//   pixels must agree to 1e-5 and 99 % of pixels to 1e-4.
+TEST(RendererStress, SameAoAtEveryScale) {
+  constexpr double kTolerance = 1e-4, kMeanTolerance = 1e-5, kShareWithin = 0.99;
+  const std::pair<const char*, std::size_t> views[] = {
+      {"corner", 0}, {"corner", 1}, {"village", 0}};
+  const float exact[] = {std::ldexp(1.0f, -17), std::ldexp(1.0f, 17)};
+  const float decimal[] = {1e-5f, 1e5f};
+  for (Technique t : kAll) {
+    for (Blur blur : {Blur::kNone, Blur::kBilateral}) {
+      double worst_exact = 0, worst_decimal = 0, worst_mean = 0, worst_share = 1;
+      for (const auto& [name, view] : views) {
+        const Images one = render(scaled_scene(name, 1, 0.01f), view, scaled_settings(t, 1, blur));
+        const Stats at_one = geometry_stats(one);
+        ASSERT_LT(at_one.min, 0.9) << name << " " << technique_name(t) << ": nothing occluded";
+        for (float scale : {exact[0], exact[1], decimal[0], decimal[1]}) {
+          const bool is_exact = scale == exact[0] || scale == exact[1];
+          const std::string what = std::string(technique_name(t)) + " " +
+                                   std::string(blur_name(blur)) + " " + name + " " +
+                                   std::to_string(view) + " scale " + std::to_string(scale);
+          Images scaled;
+          ASSERT_NO_THROW(scaled = render(scaled_scene(name, scale, 0.01f), view,
+                                          scaled_settings(t, scale, blur)))
+              << what;
+          const cv::Mat geometry = one.depth > 0;
+          ASSERT_EQ(cv::countNonZero(geometry != (scaled.depth > 0)), 0) << what;
+          cv::Mat diff;
+          cv::absdiff(one.ao, scaled.ao, diff);
+          const double max_diff = cv::norm(diff, cv::NORM_INF);
+          if (is_exact) {
+            EXPECT_LE(max_diff, kTolerance) << what;
+            worst_exact = std::max(worst_exact, max_diff);
+            continue;
+          }
+          const double mean_diff = std::abs(geometry_stats(scaled).mean - at_one.mean);
+          const double within = 1 - static_cast<double>(cv::countNonZero(diff > kTolerance)) /
+                                        cv::countNonZero(geometry);
+          EXPECT_LE(mean_diff, kMeanTolerance) << what;
+          EXPECT_GE(within, kShareWithin) << what;
+          worst_decimal = std::max(worst_decimal, max_diff);
+          worst_mean = std::max(worst_mean, mean_diff);
+          worst_share = std::min(worst_share, within);
+        }
+      }
+      std::printf(
+          "[ measured ] %-8s %-9s max |dAO| exact scales %.3g; 1e-5, 1e5: max %.3g, mean %.3g, "
+          "%.2f %% of pixels within 1e-4\n",
+          std::string(technique_name(t)).c_str(), std::string(blur_name(blur)).c_str(), worst_exact,
+          worst_decimal, worst_mean, 100 * worst_share);
     }
   }
 }
@@ -198,6 +278,164 @@ TEST(RendererStress, GrazingViewsInsideGeometryDegenerateAndEmptyScenes) {
     const Images e = render(empty, 0, settings(t, 0.5f));
     EXPECT_EQ(cv::countNonZero(e.ao != 1.0f), 0) << name << ": empty scene must be all 1";
   }
+}
+
+// The blur pass driven directly: a synthetic G-buffer (every pixel geometry, at the given
+// linear depths) and AO, blurred, read back.
+class BlurFixture {
+ public:
+  static constexpr int kSize = 64;
+  using Plane = std::vector<float>;  // kSize x kSize, GL's row order (bottom row first)
+
+  static std::size_t index(int x, int y) { return static_cast<std::size_t>(y * kSize + x); }
+  static Plane uniform(float value) { return Plane(kSize * kSize, value); }
+  static float& at(Plane& p, int x, int y) { return p[index(x, y)]; }
+  static float at(const Plane& p, int x, int y) { return p[index(x, y)]; }
+
+  Plane blur(Blur kind, const Plane& ao, const Plane& depth) {
+    GBuffer g = make_gbuffer(kSize, kSize);
+    // The reversed-Z buffer only marks geometry (> 0) for draw_geometry_pixels, whose
+    // triangle at depth 0 needs the G-buffer pass's [0, 1] clip control. (A clear obeys the
+    // depth mask, which draw_geometry_pixels leaves off.)
+    glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
+    const float geometry = 0.5f;
+    glDepthMask(GL_TRUE);
+    glClearNamedFramebufferfv(g.fb.get(), GL_DEPTH, 0, &geometry);
+    glTextureSubImage2D(g.depth.get(), 0, 0, 0, kSize, kSize, GL_RED, GL_FLOAT, depth.data());
+    Texture ao_tex = make_texture(GL_R32F, kSize, kSize);
+    Texture scratch = make_texture(GL_RG32F, kSize, kSize);
+    glTextureSubImage2D(ao_tex.get(), 0, 0, 0, kSize, kSize, GL_RED, GL_FLOAT, ao.data());
+    const Framebuffer ao_fb = make_framebuffer({ao_tex.get()}, g.zbuffer.get());
+    const Framebuffer scratch_fb = make_framebuffer({scratch.get()}, g.zbuffer.get());
+    pass_.run(g, kind, ao_tex.get(), ao_fb.get(), scratch.get(), scratch_fb.get());
+    Plane out(ao.size());
+    glGetTextureImage(ao_tex.get(), 0, GL_RED, GL_FLOAT,
+                      static_cast<GLsizei>(out.size() * sizeof(float)), out.data());
+    check_gl("blur fixture");
+    return out;
+  }
+
+  // The blur's analytic kernel: a Gaussian of sigma 4 px over taps -10..10, from its
+  // definition rather than from blur.frag's table.
+  static double gaussian(int i) { return i < -10 || i > 10 ? 0 : std::exp(-i * i / 32.0); }
+  static double gaussian_sum() {
+    double s = 0;
+    for (int i = -10; i <= 10; ++i) s += gaussian(i);
+    return s;
+  }
+
+ private:
+  Renderer& context_ = shared_renderer();  // current before pass_ compiles its programs
+  BlurPass pass_;
+};
+
+// Float precision of a normalized 21-tap sum of values in [0, 1]: each of the two passes
+// rounds ~21 products and a division at float's 6e-8 relative step.
+constexpr double kBlurTolerance = 2e-6;
+
+TEST(RendererBlur, ImpulseResponseIsTheNormalizedGaussian) {
+  // AO 1 everywhere but one 0 pixel, on flat, equal-depth G-buffer: 1 - output is the 2D
+  // kernel w(dx) w(dy) / S^2, which the depth-aware blur must reproduce too (equal depths
+  // give every tap range weight 1). A changed table weight moves it by ~1e-3.
+  constexpr int kC = BlurFixture::kSize / 2;
+  BlurFixture::Plane ao = BlurFixture::uniform(1);
+  BlurFixture::at(ao, kC, kC) = 0;
+  const double s2 = BlurFixture::gaussian_sum() * BlurFixture::gaussian_sum();
+  for (Blur kind : {Blur::kGaussian, Blur::kBilateral}) {
+    BlurFixture f;
+    BlurFixture::Plane out = f.blur(kind, ao, BlurFixture::uniform(10));
+    double worst = 0;
+    for (int y = 0; y < BlurFixture::kSize; ++y) {
+      for (int x = 0; x < BlurFixture::kSize; ++x) {
+        const double expected =
+            1 - BlurFixture::gaussian(x - kC) * BlurFixture::gaussian(y - kC) / s2;
+        worst = std::max(worst, std::abs(BlurFixture::at(out, x, y) - expected));
+      }
+    }
+    EXPECT_LE(worst, kBlurTolerance) << blur_name(kind);
+    std::printf("[ measured ] impulse response, %s: max error %.3g\n",
+                std::string(blur_name(kind)).c_str(), worst);
+  }
+}
+
+TEST(RendererBlur, StepResponseIsTheGaussiansCumulativeSum) {
+  // AO 0 left of column 32 and 1 from it on, equal depths: the output at column x is the
+  // share of the normalized kernel that lands on the right side, the same in every row.
+  constexpr int kEdge = BlurFixture::kSize / 2;
+  BlurFixture::Plane ao = BlurFixture::uniform(0);
+  for (int y = 0; y < BlurFixture::kSize; ++y) {
+    for (int x = kEdge; x < BlurFixture::kSize; ++x) BlurFixture::at(ao, x, y) = 1;
+  }
+  for (Blur kind : {Blur::kGaussian, Blur::kBilateral}) {
+    BlurFixture f;
+    BlurFixture::Plane out = f.blur(kind, ao, BlurFixture::uniform(3));
+    double worst = 0;
+    for (int x = 0; x < BlurFixture::kSize; ++x) {
+      double right = 0;
+      for (int i = -10; i <= 10; ++i) right += (x + i >= kEdge) * BlurFixture::gaussian(i);
+      const double expected = right / BlurFixture::gaussian_sum();
+      for (int y = 0; y < BlurFixture::kSize; ++y) {
+        worst = std::max(worst, std::abs(BlurFixture::at(out, x, y) - expected));
+      }
+    }
+    EXPECT_LE(worst, kBlurTolerance) << blur_name(kind);
+    std::printf("[ measured ] step response, %s: max error %.3g\n",
+                std::string(blur_name(kind)).c_str(), worst);
+  }
+}
+
+TEST(RendererBlur, BilateralDoesNotBleedAcrossADepthEdge) {
+  // A near surface (depth 1, AO 0) left of column 32 and a far one (depth 100, AO 1) right of
+  // it: the depth-aware blur gives every tap across the edge weight 0 (a relative depth
+  // difference far past 1/sharpness), so both sides keep their AO exactly; the plain
+  // Gaussian bleeds, as the step response above says it must.
+  constexpr int kEdge = BlurFixture::kSize / 2;
+  BlurFixture::Plane ao = BlurFixture::uniform(0), depth = BlurFixture::uniform(1);
+  for (int y = 0; y < BlurFixture::kSize; ++y) {
+    for (int x = kEdge; x < BlurFixture::kSize; ++x) {
+      BlurFixture::at(ao, x, y) = 1, BlurFixture::at(depth, x, y) = 100;
+    }
+  }
+  BlurFixture f;
+  const BlurFixture::Plane bilateral = f.blur(Blur::kBilateral, ao, depth);
+  EXPECT_EQ(bilateral, ao);
+  const BlurFixture::Plane gaussian = f.blur(Blur::kGaussian, ao, depth);
+  EXPECT_GT(BlurFixture::at(gaussian, kEdge - 1, 0), 0.3f);
+  EXPECT_LT(BlurFixture::at(gaussian, kEdge, 0), 0.7f);
+}
+
+TEST(RendererBlur, BilateralRangeWeightOnASmallDepthStep) {
+  // A step of 2 % in depth: taps across it keep range weight 1 - sharpness * |dz| / z (0.6
+  // from the near side, 0.608 from the far one), so the response is the Gaussian's
+  // cumulative sum with the far taps weighted so, in closed form.
+  constexpr int kEdge = BlurFixture::kSize / 2;
+  constexpr double kSharpness = 20;  // blur_pass.cpp's kEdgeSharpness
+  const float near_z = 10, far_z = 10.2f;
+  BlurFixture::Plane ao = BlurFixture::uniform(0), depth = BlurFixture::uniform(near_z);
+  for (int y = 0; y < BlurFixture::kSize; ++y) {
+    for (int x = kEdge; x < BlurFixture::kSize; ++x) {
+      BlurFixture::at(ao, x, y) = 1, BlurFixture::at(depth, x, y) = far_z;
+    }
+  }
+  BlurFixture f;
+  const BlurFixture::Plane out = f.blur(Blur::kBilateral, ao, depth);
+  double worst = 0;
+  for (int x = 0; x < BlurFixture::kSize; ++x) {
+    const double z = x < kEdge ? near_z : far_z;
+    const double across =
+        std::max(0.0, 1 - kSharpness / z * std::abs(static_cast<double>(far_z) - near_z));
+    double sum = 0, wsum = 0;
+    for (int i = -10; i <= 10; ++i) {
+      const int q = std::clamp(x + i, 0, BlurFixture::kSize - 1);
+      const double w = BlurFixture::gaussian(i) * ((q >= kEdge) == (x >= kEdge) ? 1 : across);
+      sum += w * (q >= kEdge), wsum += w;
+    }
+    for (int y = 0; y < BlurFixture::kSize; ++y) {
+      worst = std::max(worst, std::abs(BlurFixture::at(out, x, y) - sum / wsum));
+    }
+  }
+  EXPECT_LE(worst, kBlurTolerance);
+  std::printf("[ measured ] bilateral range weights: max error %.3g\n", worst);
 }
 
 TEST(Renderer, SameInputsGiveIdenticalBytes) {

@@ -76,6 +76,7 @@
   X(PFNGLSHADERSOURCEPROC, glShaderSource)                               \
   X(PFNGLTEXTUREPARAMETERIPROC, glTextureParameteri)                     \
   X(PFNGLTEXTURESTORAGE2DPROC, glTextureStorage2D)                       \
+  X(PFNGLTEXTURESUBIMAGE2DPROC, glTextureSubImage2D)                     \
   X(PFNGLUSEPROGRAMPROC, glUseProgram)                                   \
   X(PFNGLVERTEXARRAYATTRIBBINDINGPROC, glVertexArrayAttribBinding)       \
   X(PFNGLVERTEXARRAYATTRIBFORMATPROC, glVertexArrayAttribFormat)         \

@@ -18,9 +18,9 @@ uniform float u_sharpness;  // 1 / relative depth difference at which a tap's we
 layout(location = 0) out vec2 o_ao;
 
 const int kRadius = 10;
-// exp(-i^2 / (2 sigma^2)), sigma = 4, i = 0..10
+// exp(-i^2 / (2 sigma^2)), sigma = 4, i = 0..10 (RendererBlur.* checks the normalized kernel)
 const float kWeight[kRadius + 1] = float[](1.0, 0.969233234, 0.882496903, 0.754839602,
-    0.606530660, 0.457833362, 0.324652467, 0.216265167, 0.135335283, 0.0773047404, 0.0411112291);
+    0.606530660, 0.457833362, 0.324652467, 0.216265167, 0.135335283, 0.0795595087, 0.0439369336);
 
 void main() {
   ivec2 p = ivec2(gl_FragCoord.xy);

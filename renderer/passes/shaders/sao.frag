@@ -5,6 +5,10 @@
 // Per tap f = max(r^2 - v.v, 0)^3 * max((v.n - beta) / (v.v + eps r^2), 0);
 // A = max(0, 1 - sum * sigma / r^5 * 5 / s). At r = 1 this is the reference's
 // sigma / r^6 with eps = 0.01; the extra r keeps the result independent of scene scale.
+// beta = u_bias * r: the reference subtracts SAO::Settings' bias 0.012 from v.n in absolute
+// scene units (design/ao-techniques.md 3.2), so with the scene scaled to 1e-5 it swallowed
+// every v.n and nothing occluded. As a share of r it is the published 0.012 at r = 1, and f
+// scales as r^5 (r^6 * r / r^2) like the normalization, so A does not depend on scene units.
 uniform sampler2D u_depth;  // the pyramid, levels 0..5
 #include "ao_uniforms.glsl"
 layout(location = 0) out float o_ao;
@@ -52,6 +56,7 @@ void main() {
   float ss_radius = u_proj_scale * u_radius / z;
   float spin = spin_angle(p);
   float r2 = u_radius * u_radius;
+  float beta = u_bias * u_radius;
   float sum = 0.0;
   // Tap i lies at angle (i + 0.5) * step + spin: rotate one direction per tap instead of two
   // trigonometric calls.
@@ -74,7 +79,7 @@ void main() {
     vec3 v = view_position(vec2(src) + 0.5, size, zq) - c;
     float vv = dot(v, v);
     float f = max(r2 - vv, 0.0);
-    sum += f * f * f * max((dot(v, n) - u_bias) / (vv + 0.01 * r2), 0.0);
+    sum += f * f * f * max((dot(v, n) - beta) / (vv + 0.01 * r2), 0.0);
   }
   float r5 = r2 * r2 * u_radius;
   float a = max(0.0, 1.0 - sum * u_intensity / r5 * 5.0 / float(max(u_samples, 1)));
