@@ -24,6 +24,7 @@ struct SceneCase final : harness::MadeCase {
   std::string view;
   renderer::Technique technique{};
   renderer::AoParams params;
+  bool allow_empty = false;  // the suite expects the view to draw no geometry
 
   // The renderer's build (the bytes of the library holding this code), every shader's text as
   // the renderer will read it, the scene's geometry, colours and views, the view, technique,

@@ -68,7 +68,7 @@ struct SceneCaseKind final : harness::CaseKind {
   std::string_view name() const override { return "render"; }
   std::string_view key() const override { return "scene"; }
   std::vector<std::string_view> case_keys() const override {
-    return {"views", "techniques", "images"};
+    return {"views", "techniques", "images", "allow_empty"};
   }
   std::vector<std::string_view> default_keys() const override { return {"techniques", "images"}; }
 
@@ -79,6 +79,7 @@ struct SceneCaseKind final : harness::CaseKind {
     const std::shared_ptr<const rd::Scene> scene = scene_of(t, scene_node, source);
     const std::vector<std::string> techniques = read_techniques(t);
     const std::vector<std::string> images = read_images(t);
+    const toml::node* allow_empty = t.table.get("allow_empty");
     std::vector<std::string> views;
     if (const toml::node* n = t.table.get("views")) {
       views = r.strings(*n, "views");
@@ -104,6 +105,7 @@ struct SceneCaseKind final : harness::CaseKind {
         made->view = rd::find_view(*scene, view).name;
         made->technique = rd::parse_technique(technique);
         made->params = rd::default_params(made->technique);
+        made->allow_empty = allow_empty && r.boolean(*allow_empty, "allow_empty");
         for (const auto& [key, value] : t.base.param_overrides) {
           try {
             rd::set_param(made->params, key, value);

@@ -1,5 +1,7 @@
 #include "ao/scene_maker.hpp"
 
+#include <fmt/format.h>
+
 #include "ao/scene_case.hpp"
 #include "common/file_io.hpp"
 #include "compare/exr_file.hpp"
@@ -37,7 +39,15 @@ class SceneMaker final : public harness::Maker {
     s.width = c.width, s.height = c.height, s.technique = sc.technique, s.params = sc.params;
     const bool ao_float = std::ranges::count(c.images, "ao_float") > 0;
     s.outputs = {.no_ao = true, .with_ao = true, .ao_only = true, .ao_float = ao_float};
-    rd::Images img = renderer_.render(*sc.scene, rd::find_view(*sc.scene, sc.view), s);
+    const rd::View& view = rd::find_view(*sc.scene, sc.view);
+    rd::Images img = renderer_.render(*sc.scene, view, s);
+    // An empty frame is never a silent pass: its golden would be an image of the background.
+    if (img.geometry_pixels == 0 && !sc.allow_empty) {
+      throw std::runtime_error(fmt::format(
+          "view '{}' draws no geometry (everything clipped or background; near plane {:g}); "
+          "if that is expected, say allow_empty = true",
+          sc.view, view.near));
+    }
     fs::create_directories(case_dir);
     for (const auto& [name, mat] :
          {std::pair{"no_ao", &img.no_ao}, {"with_ao", &img.with_ao}, {"ao_only", &img.ao_only}}) {

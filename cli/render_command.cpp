@@ -63,6 +63,12 @@ int run_render(const RenderArgs& a) {
   const std::string text = j.dump(2) + "\n";
   write_text(dir / (stem + ".json"), text);
   fmt::print("{}: {}\n", (dir / stem).string(), j["median_ms"].dump());
+  if (img.geometry_pixels == 0) {
+    fmt::print(stderr,
+               "aosuite render: warning: view '{}' of {} draws no geometry (everything clipped "
+               "or background; near plane {:g}): the images show only the background\n",
+               view.name, scene.name, view.near);
+  }
   return kExitSame;
 }
 

@@ -165,6 +165,7 @@ Images Renderer::render(const Scene& scene, const View& view, const RenderSettin
   if (s.outputs.with_ao) out.with_ao = rgba(st.with_ao);
   if (s.outputs.ao_only) out.ao_only = rgba(st.ao_only);
   out.depth = read_texture(st.gbuffer.depth.get(), w, h, GL_RED, GL_FLOAT, CV_32F);
+  out.geometry_pixels = cv::countNonZero(out.depth > 0);
   if (s.outputs.normal)
     out.normal = read_texture(st.gbuffer.normal.get(), w, h, GL_RGB, GL_FLOAT, CV_32FC3);
   if (s.outputs.ao_float) {

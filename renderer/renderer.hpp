@@ -32,9 +32,12 @@ struct Images {
   cv::Mat no_ao, with_ao, ao_only;  // CV_8UC4 RGBA, sRGB, top row first
   cv::Mat ao;                       // CV_32F visibility in [0, 1]; 1 on background
   cv::Mat depth;                    // CV_32F linear view depth; 0 on background
-  cv::Mat normal;                   // CV_32FC3 view-space unit normal (x, y, z); Outputs::normal
-  std::vector<PassTime> times;      // each pass's GPU time
-  double frame_ms = 0;  // wall time from the first pass's submission to the last one's end
+  // Pixels that drew geometry: 0 when the view sees none (all clipped, or all background),
+  // which callers must not pass off as a frame (render warns, a suite case fails).
+  int geometry_pixels = 0;
+  cv::Mat normal;               // CV_32FC3 view-space unit normal (x, y, z); Outputs::normal
+  std::vector<PassTime> times;  // each pass's GPU time
+  double frame_ms = 0;          // wall time from the first pass's submission to the last one's end
 };
 
 class Renderer {

@@ -236,6 +236,41 @@ TEST_F(HarnessCli, KilledBlessLeavesEveryGoldenWhole) {
   }
 }
 
+// A view that draws no geometry is never a silent pass: render warns, a suite case is an ERROR
+// saying why, unless the case says allow_empty = true.
+TEST_F(HarnessCli, AnEmptyViewIsNeverASilentPass) {
+  std::ofstream(dir_ / "suites" / "tri.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+  std::ofstream(dir_ / "suites" / "away.toml") << R"([[meshes]]
+file = "tri.obj"
+[[views]]
+name = "away"
+eye = [0, 0, 3]
+target = [0, 0, 6]
+)";
+  std::ofstream(dir_ / "suites" / "e.toml") << R"(
+[defaults]
+width = 16
+height = 9
+techniques = ["sao"]
+[[case]]
+scene = "away.toml"
+[[case]]
+scene = "away.toml"
+name = "expected"
+allow_empty = true
+)";
+  test::Outcome r = aosuite("check suites/e.toml");
+  EXPECT_EQ(r.rc, 2) << r.out;
+  EXPECT_NE(r.out.find("ERROR away-away-sao-16x9  view 'away' draws no geometry"),
+            std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("NEW   away-away-sao-16x9-expected"), std::string::npos) << r.out;
+  r = aosuite("render --scene suites/away.toml --width 16 --height 9 --out rendered");
+  EXPECT_EQ(r.rc, 0) << r.err;
+  EXPECT_NE(r.err.find("warning: view 'away' of"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("draws no geometry"), std::string::npos) << r.err;
+}
+
 // A run that judges nothing is never green, and leaves the last report as it was.
 TEST_F(HarnessCli, AnEmptySelectionIsAnErrorAndKeepsTheLastReport) {
   ASSERT_EQ(aosuite("bless suites/t.toml").rc, 0);
