@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
+#include "ao/statistics.hpp"
 #include "cli/commands.hpp"
 #include "cli/gl_command_util.hpp"
 #include "compare/opencv.hpp"
@@ -20,7 +21,7 @@ namespace fs = std::filesystem;
 namespace rd = aosuite::renderer;
 
 struct RenderArgs {
-  CaseOptions c;
+  ao::CaseOptions c;
   std::string out = "reports/render", outputs = "all";
   int runs = 1;
 };
@@ -28,7 +29,7 @@ struct RenderArgs {
 int run_render(const RenderArgs& a) {
   rd::Scene scene = rd::load_scene(a.c.scene);
   const rd::View& view = rd::find_view(scene, a.c.view);
-  rd::RenderSettings s = case_settings(a.c);
+  rd::RenderSettings s = ao::case_settings(a.c);
   s.outputs = rd::parse_outputs(a.outputs);
 
   rd::Renderer renderer;
@@ -58,8 +59,8 @@ int run_render(const RenderArgs& a) {
   j["runs"] = a.runs;
   // Each pass's GPU time (GL_TIME_ELAPSED), and the frame's wall time from the first pass's
   // submission to the last one's end (read-back excluded).
-  for (const auto& [pass, times] : gpu) j["median_ms"][pass] = median(times);
-  j["median_ms"]["frame_wall"] = median(frame);
+  for (const auto& [pass, times] : gpu) j["median_ms"][pass] = ao::median(times);
+  j["median_ms"]["frame_wall"] = ao::median(frame);
   const std::string text = j.dump(2) + "\n";
   write_text(dir / (stem + ".json"), text);
   fmt::print("{}: {}\n", (dir / stem).string(), j["median_ms"].dump());

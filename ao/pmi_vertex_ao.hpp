@@ -7,7 +7,7 @@
 
 #include "renderer/pmi/pmi_channel.hpp"
 
-namespace aosuite::cli {
+namespace aosuite::ao {
 
 // `normals` per object vertex; `rays` per vertex (the reference's cosine-weighted Hammersley
 // directions, rotated per vertex index, so the result is reproducible). Vertices in no
@@ -15,4 +15,4 @@ namespace aosuite::cli {
 std::vector<float> ray_traced_vertex_ao(const renderer::PmiObject& object,
                                         const std::vector<glm::vec3>& normals, int rays);
 
-}  // namespace aosuite::cli
+}  // namespace aosuite::ao

@@ -11,7 +11,7 @@
 
 #include "renderer/technique.hpp"
 
-namespace aosuite::cli {
+namespace aosuite::ao {
 
 struct TechniqueGrid {
   renderer::Technique technique;
@@ -36,4 +36,4 @@ struct SweepGrid {
 // Throws aosuite::FileError naming the file, and the key at fault, for unreadable or bad input.
 SweepGrid read_sweep_grid(const std::filesystem::path& path);
 
-}  // namespace aosuite::cli
+}  // namespace aosuite::ao

@@ -1,8 +1,8 @@
-#include "cli/pmi_vertex_ao.hpp"
+#include "ao/pmi_vertex_ao.hpp"
 
 #include "reference/reference_ao.hpp"
 
-namespace aosuite::cli {
+namespace aosuite::ao {
 
 std::vector<float> ray_traced_vertex_ao(const renderer::PmiObject& o,
                                         const std::vector<glm::vec3>& normals, int rays) {
@@ -26,4 +26,4 @@ std::vector<float> ray_traced_vertex_ao(const renderer::PmiObject& o,
   return ao;
 }
 
-}  // namespace aosuite::cli
+}  // namespace aosuite::ao

@@ -1,11 +1,24 @@
-#include "cli/sweep_rows.hpp"
+#include "ao/sweep_rows.hpp"
 
-#include "cli/gl_command_util.hpp"
+#include <fmt/format.h>
 
-namespace aosuite::cli {
+#include "ao/error_json.hpp"
+
+namespace aosuite::ao {
 
 namespace rd = aosuite::renderer;
 namespace ref = aosuite::reference;
+
+std::string params_text(const Row& r) {
+  std::string out;
+  for (const auto& [k, v] : r.params) out += (out.empty() ? "" : " ") + k + "=" + v;
+  return out;
+}
+
+std::string row_label(const Row& r) {
+  const std::string name(rd::technique_name(r.technique));
+  return r.params.empty() ? name : fmt::format("{} ({})", name, params_text(r));
+}
 
 nlohmann::ordered_json row_json(const Row& r, bool unbounded) {
   nlohmann::ordered_json j{{"index", r.index},
@@ -41,4 +54,4 @@ Row row_from_json(const nlohmann::json& j) {
   return r;
 }
 
-}  // namespace aosuite::cli
+}  // namespace aosuite::ao

@@ -11,7 +11,7 @@
 #include "reference/frame_error.hpp"
 #include "renderer/technique.hpp"
 
-namespace aosuite::cli {
+namespace aosuite::ao {
 
 struct Row {
   std::size_t index = 0;  // the configuration's place in the grid's order
@@ -27,8 +27,13 @@ struct Row {
   std::map<std::string, std::string> params;  // the grid's fixed parameters
 };
 
+// The grid's fixed parameters as text: "blur=none level_weights=1,0,0,0,0".
+std::string params_text(const Row& r);
+// The technique as the console and Markdown name it: "mssao (max_pixel_radius=10)".
+std::string row_label(const Row& r);
+
 nlohmann::ordered_json row_json(const Row& r, bool unbounded);
 // Throws std::invalid_argument (or nlohmann's errors) for a row that row_json did not write.
 Row row_from_json(const nlohmann::json& j);
 
-}  // namespace aosuite::cli
+}  // namespace aosuite::ao

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-namespace aosuite::cli {
+namespace aosuite::ao {
 
 struct PlotPoint {
   std::string series;   // e.g. the technique
@@ -19,4 +19,4 @@ std::string pareto_svg(const std::vector<PlotPoint>& points, const std::string& 
 // Indices of the Pareto-optimal points (lowest y for their x or less), by increasing x.
 std::vector<std::size_t> pareto_front(const std::vector<PlotPoint>& points);
 
-}  // namespace aosuite::cli
+}  // namespace aosuite::ao

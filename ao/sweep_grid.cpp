@@ -1,4 +1,4 @@
-#include "cli/sweep_grid.hpp"
+#include "ao/sweep_grid.hpp"
 
 #include <fmt/format.h>
 #include <toml++/toml.h>
@@ -7,7 +7,7 @@
 #include "compare/image_io.hpp"
 #include "renderer/params.hpp"
 
-namespace aosuite::cli {
+namespace aosuite::ao {
 namespace {
 
 namespace fs = std::filesystem;
@@ -130,4 +130,4 @@ SweepGrid read_sweep_grid(const fs::path& path) {
   }
 }
 
-}  // namespace aosuite::cli
+}  // namespace aosuite::ao

@@ -1,4 +1,4 @@
-#include "cli/sweep_plot.hpp"
+#include "ao/sweep_plot.hpp"
 
 #include <fmt/format.h>
 
@@ -9,7 +9,7 @@
 
 #include "harness/escape.hpp"
 
-namespace aosuite::cli {
+namespace aosuite::ao {
 namespace {
 
 constexpr double kW = 760, kH = 480, kLeft = 70, kRight = 150, kTop = 40, kBottom = 55;
@@ -104,4 +104,4 @@ std::string pareto_svg(const std::vector<PlotPoint>& points, const std::string& 
   return svg + "</svg>\n";
 }
 
-}  // namespace aosuite::cli
+}  // namespace aosuite::ao

@@ -1,0 +1,43 @@
+#include "ao/case_options.hpp"
+
+#include <fmt/format.h>
+
+#include <stdexcept>
+
+#include "renderer/params.hpp"
+
+namespace aosuite::ao {
+
+namespace {
+
+namespace rd = aosuite::renderer;
+
+// The technique's defaults, then --samples, --radius and each --param KEY=VALUE in order.
+// Throws std::invalid_argument for a malformed pair or a bad value.
+rd::AoParams technique_params(rd::Technique t, const std::optional<std::string>& samples,
+                              const std::optional<std::string>& radius,
+                              const std::vector<std::string>& params) {
+  rd::AoParams p = rd::default_params(t);
+  if (samples) rd::set_param(p, "samples", *samples);
+  if (radius) rd::set_param(p, "radius", *radius);
+  for (const std::string& kv : params) {
+    const std::size_t eq = kv.find('=');
+    if (eq == std::string::npos) {
+      throw std::invalid_argument(fmt::format("--param '{}': expected KEY=VALUE", kv));
+    }
+    rd::set_param(p, kv.substr(0, eq), kv.substr(eq + 1));
+  }
+  return p;
+}
+
+}  // namespace
+
+rd::RenderSettings case_settings(const CaseOptions& o) {
+  rd::RenderSettings s;
+  s.width = o.width, s.height = o.height;
+  s.technique = rd::parse_technique(o.technique);
+  s.params = technique_params(s.technique, o.samples, o.radius, o.params);
+  return s;
+}
+
+}  // namespace aosuite::ao

@@ -1,0 +1,25 @@
+// Which case `render` and `error` draw and with which parameters, as their options give it,
+// and the render settings that names. (The options themselves are the CLI's.)
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "renderer/renderer.hpp"
+#include "renderer/technique.hpp"
+
+namespace aosuite::ao {
+
+struct CaseOptions {
+  std::string scene = "village", view, technique = "alchemy";
+  int width = 1920, height = 1080;
+  std::optional<std::string> samples, radius;
+  std::vector<std::string> params;  // KEY=VALUE
+};
+
+// The render settings they name (all outputs, as RenderSettings defaults); throws
+// std::invalid_argument for an unknown technique or a bad parameter.
+renderer::RenderSettings case_settings(const CaseOptions& o);
+
+}  // namespace aosuite::ao
