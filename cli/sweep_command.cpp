@@ -44,7 +44,10 @@ void write_sweep(const fs::path& dir, const ao::SweepResult& sweep, const std::s
                f["rmse_eval_view"].get<double>(), f["eval_view"].get<std::string>(),
                f["best_rmse_eval_view"].get<double>());
   }
-  fmt::print("{} rows: {}\n", sweep.rows.size(), (dir / "sweep.csv").string());
+  // Every file it wrote, the plots included: where to look next.
+  std::string files;
+  for (const ao::SweepFile& f : report.files) files += (files.empty() ? "" : ", ") + f.name;
+  fmt::print("{} rows in {}: {}\n", sweep.rows.size(), dir.string(), files);
 }
 
 int run_sweep(const std::string& grid_file, const std::vector<std::string>& resolutions,

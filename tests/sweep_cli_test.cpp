@@ -94,6 +94,10 @@ TEST(SweepCli, SceneAndResolutionReplaceTheGrids) {
     EXPECT_EQ(cells.at(3) + "x" + cells.at(4), "64x36") << line;
   }
   EXPECT_EQ(rows, (4 * 4 + 2) * 2);  // the plane's two views
+  // The last line names every file written, the plot included, not only the CSV.
+  EXPECT_NE(o.out.find("36 rows in "), std::string::npos) << o.out;
+  EXPECT_NE(o.out.find("sweep.csv"), std::string::npos) << o.out;
+  EXPECT_NE(o.out.find("sweep_64x36.svg"), std::string::npos) << o.out;
 }
 
 TEST(SweepCli, ErrorPrintsJsonAndWritesTheReference) {
