@@ -25,6 +25,7 @@ struct HarnessArgs {
   std::string suite, filter, shard, report, junit, tag, goldens, actual, expected;
   int jobs = 1, retries = 0;
   std::optional<double> max_mismatch;
+  std::optional<int> max_channel_delta;
   std::vector<std::string> gates;
   bool diff_all = false, no_reuse = false, platform = false, list = false, json = false;
   bool force = false, from_report = false, failed = false, single_file = false;
@@ -44,6 +45,10 @@ void add_selection_options(CLI::App* cmd, HarnessArgs& a) {
                   "folder mode: allowed Resemble mismatch % per image (default 0, unless only "
                   "--gate is given)")
       ->check(CLI::Range(0.0, 100.0));
+  cmd->add_option("--max-channel-delta", a.max_channel_delta,
+                  "folder mode: the largest |new - golden| of any channel still passing (default 8, "
+                  "any with --max-mismatch: Resemble's `less` mode alone ignores up to 16 levels)")
+      ->check(CLI::Range(0, 255));
   cmd->add_option("--gate", a.gates,
                   "folder mode: METRIC.KEY=VALUE, as in `compare --gate` (e.g. flip.max_mean=0.02; "
                   "repeatable); EXR images are judged by these");
@@ -74,9 +79,9 @@ hs::Suite load(const HarnessArgs& a) {
     throw std::invalid_argument(folders ? "give a suite file or --actual/--expected, not both"
                                         : "give a suite file, or --actual DIR --expected DIR");
   }
-  if (!folders && (a.max_mismatch || !a.gates.empty())) {
+  if (!folders && (a.max_mismatch || a.max_channel_delta || !a.gates.empty())) {
     throw std::invalid_argument(
-        "--max-mismatch and --gate are folder mode's; a suite says its "
+        "--max-mismatch, --max-channel-delta and --gate are folder mode's; a suite says its "
         "tolerances itself");
   }
   if (folders) {
@@ -86,8 +91,11 @@ hs::Suite load(const HarnessArgs& a) {
     }
     hs::Tolerance t;
     t.max_mismatch_percent = a.max_mismatch.value_or(0);
+    t.max_channel_delta =
+        a.max_channel_delta.value_or(a.max_mismatch ? 255 : hs::kDefaultChannelDelta);
     for (const std::string& spec : a.gates) metric::add_gate_spec(t.gates, spec);
-    t.resemble = a.max_mismatch || t.gates.empty();  // as in a suite: gates alone replace it
+    // As in a suite: gates alone replace Resemble's gate.
+    t.resemble = a.max_mismatch || a.max_channel_delta || t.gates.empty();
     return hs::folder_suite(a.actual, a.expected, t);
   }
   hs::Suite suite = hs::load_suite(a.suite);

@@ -25,6 +25,8 @@ struct Region {
   std::vector<metric::Gates> gates;
 };
 
+inline constexpr int kDefaultChannelDelta = 8;
+
 // How far a render may stray from its golden and still pass: Resemble's gate, the metrics'
 // gates, or both (all must hold).
 struct Tolerance {
@@ -38,7 +40,10 @@ struct Tolerance {
   std::vector<Region> regions;                  // empty: no region map is read
   resemble::Mode mode = resemble::Mode::kLess;  // any Resemble.js mode
   double max_mismatch_percent = 0;              // Resemble's rawMisMatchPercentage, inclusive
-  int max_channel_delta = 255;                  // largest |new - golden| of any RGBA channel
+  // Largest |new - golden| of any RGBA channel. Resemble's default `less` mode ignores up to 16
+  // levels per channel, so without a budget a global shading change of 12 levels passes: 8
+  // unless the tolerance names a mismatch percentage alone (then any, as Resemble's gate).
+  int max_channel_delta = kDefaultChannelDelta;
   std::vector<resemble::Box> ignore;            // left, top, right, bottom, in pixels
   std::filesystem::path
       mask;  // pixels where this PNG is not black (any of R, G, B > 0) are ignored

@@ -144,6 +144,8 @@ void read_tolerance(const Reader& r, const fs::path& dir, const toml::node& n, T
   }
   if (const toml::node* m = tbl.get("max_channel_delta")) {
     t.max_channel_delta = r.integer(*m, "max_channel_delta", 0, 255);
+  } else if (tbl.get("max_mismatch_percent")) {
+    t.max_channel_delta = 255;  // a percentage alone: that many pixels may change by any amount
   }
   if (const toml::node* m = tbl.get("ignore")) {
     t.ignore.clear();

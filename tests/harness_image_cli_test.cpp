@@ -149,6 +149,44 @@ TEST_F(ImageCases, MessagesNameTheFilesTheyAreAbout) {
   EXPECT_NE(r.out.find("no golden yet at expected/x.png"), std::string::npos) << r.out;
 }
 
+// The README's suite template and folder mode's defaults catch a global shading change that
+// Resemble's `less` mode alone lets pass at 0.00 %: every pixel 12 levels darker.
+TEST_F(ImageCases, TheTemplateAndTheDefaultsCatchAGlobalShadingChange) {
+  std::ifstream readme(std::string(AOSUITE_SOURCE_DIR) + "/README.md");
+  std::string line, tolerance;
+  bool in = false;
+  while (std::getline(readme, line)) {
+    if (line == "[defaults.tolerance]") in = true;
+    if (in && line.empty()) break;
+    if (in) tolerance += line + "\n";
+  }
+  ASSERT_NE(tolerance.find("max_channel_delta"), std::string::npos) << tolerance;
+  cv::Mat shade(36, 64, CV_8UC4);
+  for (int y = 0; y < shade.rows; ++y)
+    for (int x = 0; x < shade.cols; ++x)
+      shade.at<cv::Vec4b>(y, x) = cv::Vec4b(uchar(40 + 3 * x), uchar(60 + 2 * y), 120, 255);
+  fs::create_directories(dir_ / "actual");
+  fs::create_directories(dir_ / "expected");
+  write_png_rgba8(dir_ / "expected" / "shade.png", shade);
+  cv::Mat darker = shade - cv::Scalar(12, 12, 12, 0);
+  write_png_rgba8(dir_ / "actual" / "shade.png", darker);
+  // Resemble's `less` mode alone sees nothing.
+  test::Outcome r = aosuite("check --actual actual --expected expected --max-mismatch 0");
+  EXPECT_EQ(r.rc, 0) << r.out;
+  // Folder mode's defaults, and the template's tolerance, do.
+  r = aosuite("check --actual actual --expected expected");
+  EXPECT_EQ(r.rc, 1) << r.out;
+  EXPECT_NE(r.out.find("max channel delta 12 (allowed 8)"), std::string::npos) << r.out;
+  std::ofstream(dir_ / "template.toml")
+      << tolerance << "[[case]]\nname = \"shade\"\nfiles = [\"actual/shade.png\"]\n";
+  fs::create_directories(dir_ / "goldens" / "template" / "shade");
+  fs::copy_file(dir_ / "expected" / "shade.png",
+                dir_ / "goldens" / "template" / "shade" / "shade.png");
+  r = aosuite("check template.toml");
+  EXPECT_EQ(r.rc, 1) << r.out;
+  EXPECT_NE(r.out.find("max channel delta 12 (allowed 8)"), std::string::npos) << r.out;
+}
+
 // The loop a user runs: NEW, approve, PASS (reused), a changed input FAILs with a report, the
 // report's image is approved without running the command again, PASS.
 TEST_F(ImageCases, ACommandsImagesPassFailAndAreApprovedFromTheReport) {
