@@ -987,6 +987,17 @@ files = ["shots/big.png"]
       r.out.substr(c0 + begin.size(), r.out.find("</code>", c0) - c0 - begin.size());
   EXPECT_EQ(command,
             "aosuite bless s/r.toml --from-report --report reports/r --force --filter '^(a|b)$'");
+  // With the first failure's panel open at 1280x720, nothing covers the approve bar's copy
+  // button (the panel once did).
+  for (const char* size : {"1280,720", "2200,1200"}) {
+    const test::Outcome laid_out = test::run_shell(
+        std::string("chromium --headless --no-sandbox --disable-gpu --window-size=") + size +
+            " --dump-dom 'file://" + (report / "index.html").string() + "'",
+        dir_.path());
+    EXPECT_NE(laid_out.out.find("class=\"panel\""), std::string::npos) << size;
+    EXPECT_NE(laid_out.out.find("data-copy-covered=\"false\""), std::string::npos)
+        << size << laid_out.out.substr(0, 300);
+  }
   const test::Outcome keys =
       test::run_shell("chromium --headless --no-sandbox --disable-gpu --dump-dom 'file://" +
                           (report / "index.html").string() + "#keys=n'",

@@ -167,6 +167,7 @@
     h += `<details><summary>parameters, timings</summary>${table(c.about)}${table(c.params)}${table(c.times)}</details>`;
     detail.innerHTML = h;
     detail.hidden = false;
+    document.body.classList.add("panel");
     detail.querySelector(".close").addEventListener("click", close);
     for (const b of detail.querySelectorAll(".zoom button")) b.addEventListener("click", () => setZoom(+b.dataset.z));
     for (const slider of detail.querySelectorAll(".slider")) {
@@ -178,6 +179,7 @@
   }
   function close() {
     detail.hidden = true;
+    document.body.classList.remove("panel");
     history.replaceState(null, "", "#");
   }
   function setZoom(z) {
@@ -243,4 +245,8 @@
     for (const key of hash.slice(5)) onKey({ key, target: document.body, preventDefault() {} });
   }
   document.documentElement.dataset.readyMs = performance.now().toFixed(0);
+  // Whether anything (the case panel) lies over the approve bar's copy button: it never may.
+  const copyButton = $("copy"), at = copyButton.getBoundingClientRect();
+  const top = document.elementFromPoint(at.left + at.width / 2, at.top + at.height / 2);
+  document.documentElement.dataset.copyCovered = String(top !== copyButton);
 })();
