@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "compare/image_io.hpp"
+#include "image/image_io.hpp"
 
 namespace aosuite::ao {
 

@@ -4,8 +4,8 @@
 
 #include "ao/scene_case.hpp"
 #include "common/file_io.hpp"
-#include "compare/exr_file.hpp"
-#include "compare/image_io.hpp"
+#include "image/exr_file.hpp"
+#include "image/image_io.hpp"
 #include "compare/opencv.hpp"
 #include "harness/goldens.hpp"
 #include "renderer/renderer.hpp"

@@ -4,7 +4,7 @@
 #include <toml++/toml.h>
 
 #include "common/toml_reader.hpp"
-#include "compare/image_io.hpp"
+#include "image/image_io.hpp"
 #include "renderer/params.hpp"
 
 namespace aosuite::ao {

@@ -6,7 +6,7 @@
 #include <map>
 #include <optional>
 
-#include "compare/image_io.hpp"
+#include "image/image_io.hpp"
 
 namespace aosuite::ao {
 

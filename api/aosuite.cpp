@@ -9,8 +9,8 @@
 #include <stdexcept>
 
 #include "common/file_io.hpp"
-#include "compare/image_file.hpp"
-#include "compare/image_io.hpp"
+#include "image/image_file.hpp"
+#include "image/image_io.hpp"
 #include "compare/metric.hpp"
 #include "harness/goldens.hpp"
 #include "harness/judge.hpp"

@@ -16,12 +16,12 @@
 #include "common/thread_beside.hpp"
 #include "compare/band_compare.hpp"
 #include "compare/count_kernel.hpp"
-#include "compare/inflate.hpp"
+#include "image/inflate.hpp"
 #include "compare/opencv.hpp"
 #include "compare/parallel_rows.hpp"
-#include "compare/png_fast.hpp"
-#include "compare/png_layout.hpp"
-#include "compare/png_unfilter.hpp"
+#include "image/png_fast.hpp"
+#include "image/png_layout.hpp"
+#include "image/png_unfilter.hpp"
 
 namespace {
 

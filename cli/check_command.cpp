@@ -8,7 +8,7 @@
 
 #include "cli/commands.hpp"
 #include "common/folder_lock.hpp"
-#include "compare/image_io.hpp"
+#include "image/image_io.hpp"
 #include "harness/escape.hpp"
 #include "harness/html_report.hpp"
 #include "harness/junit.hpp"

@@ -21,9 +21,9 @@
 #include "cli/compare_metrics.hpp"
 #include "common/thread_beside.hpp"
 #include "compare/band_compare.hpp"
-#include "compare/image_file.hpp"
-#include "compare/image_io.hpp"
-#include "compare/png_layout.hpp"
+#include "image/image_file.hpp"
+#include "image/image_io.hpp"
+#include "image/png_layout.hpp"
 #include "compare/resemble.hpp"
 #include "compare/resemble_json.hpp"
 

@@ -5,8 +5,8 @@
 #include <stdexcept>
 
 #include "common/thread_beside.hpp"
-#include "compare/image_file.hpp"
-#include "compare/image_io.hpp"
+#include "image/image_file.hpp"
+#include "image/image_io.hpp"
 
 namespace aosuite::cli {
 

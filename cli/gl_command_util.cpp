@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "compare/exr_file.hpp"
+#include "image/exr_file.hpp"
 #include "renderer/params.hpp"
 
 namespace aosuite::cli {

@@ -11,7 +11,7 @@
 #include "ao/sweep_report.hpp"
 #include "ao/sweep_run.hpp"
 #include "cli/commands.hpp"
-#include "compare/image_io.hpp"
+#include "image/image_io.hpp"
 #include "harness/runner.hpp"
 
 namespace aosuite::cli {

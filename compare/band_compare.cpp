@@ -7,7 +7,7 @@
 
 #include "common/thread_beside.hpp"
 #include "compare/count_kernel.hpp"
-#include "compare/png_fast.hpp"
+#include "image/png_fast.hpp"
 
 namespace aosuite {
 namespace {

@@ -6,7 +6,7 @@
 
 #include <string_view>
 
-#include "compare/rgba_image.hpp"
+#include "image/rgba_image.hpp"
 
 namespace aosuite {
 

@@ -12,7 +12,7 @@
 #include <optional>
 #include <vector>
 
-#include "compare/rgba_image.hpp"
+#include "image/rgba_image.hpp"
 
 namespace aosuite::flip {
 

@@ -12,7 +12,7 @@
 #include <string_view>
 #include <vector>
 
-#include "compare/picture.hpp"
+#include "image/picture.hpp"
 
 namespace aosuite::metric {
 

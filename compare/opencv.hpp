@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "compare/image_io.hpp"
-#include "compare/picture.hpp"
+#include "image/image_io.hpp"
+#include "image/picture.hpp"
 #include "compare/resemble.hpp"
 
 namespace aosuite {

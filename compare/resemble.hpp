@@ -13,7 +13,7 @@
 
 #include "compare/canvas_alpha.hpp"
 #include "compare/count_kernel.hpp"
-#include "compare/rgba_image.hpp"
+#include "image/rgba_image.hpp"
 
 namespace aosuite::resemble {
 

@@ -13,7 +13,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "compare/rgba_image.hpp"
+#include "image/rgba_image.hpp"
 
 namespace aosuite::ssim {
 

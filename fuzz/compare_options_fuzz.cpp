@@ -6,7 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <string_view>
 
-#include "compare/image_io.hpp"
+#include "image/image_io.hpp"
 #include "compare/resemble.hpp"
 #include "compare/resemble_json.hpp"
 #include "fuzz/fuzz_util.hpp"

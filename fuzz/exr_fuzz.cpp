@@ -1,11 +1,11 @@
-// EXR reading (compare/exr_library.cpp's aosuite_read_exr, compiled in: the fuzz build has no
+// EXR reading (image/exr_library.cpp's aosuite_read_exr, compiled in: the fuzz build has no
 // libaosuite_exr.so beside its programs) on any bytes: an image of the size it asked room for,
 // or a refusal with a one-line reason; never a crash, and never more memory than allowed.
 #include <cstring>
 #include <string>
 #include <vector>
 
-#include "compare/exr_library.hpp"
+#include "image/exr_library.hpp"
 #include "fuzz/fuzz_util.hpp"
 
 namespace {
@@ -15,7 +15,7 @@ struct Room {
   int width = 0, height = 0, channels = 0;
 };
 
-// As compare/exr_file.cpp's allocator: positive sizes, 1 or 3 channels, a budget (4 Mi floats
+// As image/exr_file.cpp's allocator: positive sizes, 1 or 3 channels, a budget (4 Mi floats
 // here: mutated headers claim huge windows, and filling them would be most of the run).
 float* allocate(void* user, int width, int height, int channels) {
   auto& room = *static_cast<Room*>(user);

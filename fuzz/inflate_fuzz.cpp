@@ -1,4 +1,4 @@
-// The inflater (compare/inflate.hpp) against zlib's inflate on any bytes: it accepts exactly
+// The inflater (image/inflate.hpp) against zlib's inflate on any bytes: it accepts exactly
 // the streams zlib accepts, with zlib's bytes, and where zlib refuses it refuses too, after the
 // same bytes; on both of its paths, with the stream in pieces and the output in bands.
 // Input: one byte choosing the piece and band sizes, then the zlib stream.
@@ -8,7 +8,7 @@
 #include <array>
 #include <vector>
 
-#include "compare/inflate.hpp"
+#include "image/inflate.hpp"
 #include "fuzz/fuzz_util.hpp"
 #include "tests/inflate_harness.hpp"
 

@@ -6,7 +6,7 @@
 #include <optional>
 
 #include "compare/band_compare.hpp"
-#include "compare/image_io.hpp"
+#include "image/image_io.hpp"
 #include "fuzz/fuzz_util.hpp"
 
 namespace {

@@ -1,11 +1,11 @@
-// PNG decoding (compare/image_io.hpp) on any bytes, held to the one validity rule
-// (compare/png_layout.hpp): the fast decoder and libspng accept the same files and decode them
+// PNG decoding (image/image_io.hpp) on any bytes, held to the one validity rule
+// (image/png_layout.hpp): the fast decoder and libspng accept the same files and decode them
 // to the same pixels, and check_png accepts exactly what decode_png does, at the same size.
 #include <cstring>
 #include <optional>
 
-#include "compare/image_io.hpp"
-#include "compare/png_fast.hpp"
+#include "image/image_io.hpp"
+#include "image/png_fast.hpp"
 #include "fuzz/fuzz_util.hpp"
 
 namespace {

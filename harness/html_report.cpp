@@ -11,7 +11,7 @@
 #include <set>
 #include <string_view>
 
-#include "compare/image_io.hpp"
+#include "image/image_io.hpp"
 #include "harness/case_kind.hpp"
 #include "harness/escape.hpp"
 

@@ -6,9 +6,9 @@
 #include <cstdlib>
 #include <stdexcept>
 
-#include "compare/image_file.hpp"
-#include "compare/image_io.hpp"
-#include "compare/png_layout.hpp"
+#include "image/image_file.hpp"
+#include "image/image_io.hpp"
+#include "image/png_layout.hpp"
 
 namespace aosuite::harness {
 

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "compare/rgba_image.hpp"
+#include "image/rgba_image.hpp"
 #include "harness/suite.hpp"
 
 namespace aosuite::harness {

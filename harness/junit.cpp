@@ -2,7 +2,7 @@
 
 #include <fmt/format.h>
 
-#include "compare/image_io.hpp"
+#include "image/image_io.hpp"
 #include "harness/escape.hpp"
 
 namespace aosuite::harness {

@@ -12,7 +12,7 @@
 #include <fstream>
 #include <stdexcept>
 
-#include "compare/image_io.hpp"
+#include "image/image_io.hpp"
 #include "harness/escape.hpp"
 
 namespace aosuite::harness {

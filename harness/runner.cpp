@@ -12,9 +12,9 @@
 #include <thread>
 
 #include "common/content_hash.hpp"
-#include "compare/exr_file.hpp"
-#include "compare/image_file.hpp"
-#include "compare/image_io.hpp"
+#include "image/exr_file.hpp"
+#include "image/image_file.hpp"
+#include "image/image_io.hpp"
 #include "harness/case_hash.hpp"
 #include "harness/case_kind.hpp"
 #include "harness/command.hpp"

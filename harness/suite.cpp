@@ -6,7 +6,7 @@
 #include <set>
 #include <stdexcept>
 
-#include "compare/picture.hpp"
+#include "image/picture.hpp"
 #include "harness/escape.hpp"
 
 namespace aosuite::harness {

@@ -9,7 +9,7 @@
 
 #include "common/file_io.hpp"
 #include "common/toml_reader.hpp"
-#include "compare/picture.hpp"
+#include "image/picture.hpp"
 #include "harness/case_kind.hpp"
 #include "harness/escape.hpp"
 

@@ -11,7 +11,7 @@
 
 #include "common/cache_dir.hpp"
 #include "common/content_hash.hpp"
-#include "compare/image_io.hpp"
+#include "image/image_io.hpp"
 
 namespace aosuite::reference {
 namespace {

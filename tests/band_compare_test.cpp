@@ -7,7 +7,7 @@
 
 #include <random>
 
-#include "compare/image_io.hpp"
+#include "image/image_io.hpp"
 #include "png_fixture.hpp"
 
 namespace aosuite {

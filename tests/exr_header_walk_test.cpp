@@ -1,7 +1,7 @@
-// compare/exr_header_walk.cpp against OpenEXR itself: a file holding an attribute of every type
+// image/exr_header_walk.cpp against OpenEXR itself: a file holding an attribute of every type
 // OpenEXR 3.1 knows is walked to its end, and so is one whose declared sizes lie where
 // OpenEXR's reader ignores them; a size claim after such a lie is still caught.
-#include "compare/exr_header_walk.hpp"
+#include "image/exr_header_walk.hpp"
 
 #include <ImfAttribute.h>
 #include <ImfBoxAttribute.h>

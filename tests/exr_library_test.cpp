@@ -1,7 +1,7 @@
 // libaosuite_exr.so's C entry points as any caller sees them: a written image reads back
 // exactly, and an allocator that refuses the size still leaves a reason in err (exr_fuzz found
 // a refusal that said nothing: fuzz/corpus/exr/window_refused_by_allocator.exr).
-#include "compare/exr_library.hpp"
+#include "image/exr_library.hpp"
 
 #include <gtest/gtest.h>
 

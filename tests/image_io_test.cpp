@@ -2,7 +2,7 @@
 #include <unistd.h>
 
 #include "compare/opencv.hpp"
-#include "compare/png_fast.hpp"
+#include "image/png_fast.hpp"
 #include "png_fixture.hpp"
 
 namespace aosuite {
@@ -34,7 +34,7 @@ TEST(DecodePng, EveryRowFilterForRgbAndRgba) {
   // filtered against one filtered the same way), then go through every ordered pair of
   // Sub, Average and Paeth (unfiltered two rows at once); random samples exercise every
   // predictor branch, values 0-3 the ties between predictors, the widths every loop tail.
-  // RGBA and RGB 8-bit take the fast path (compare/png_fast.hpp).
+  // RGBA and RGB 8-bit take the fast path (image/png_fast.hpp).
   cv::RNG rng(5);
   // Ties that change Paeth's choice need a + 2b = 3c, which a small contiguous range hits.
   const std::vector<int> filters{0, 1, 2, 3, 4, 0, 0, 1, 1, 2, 2, 3, 3, 4, 4, 4, 2, 1,

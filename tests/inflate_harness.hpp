@@ -7,7 +7,7 @@
 #include <span>
 #include <vector>
 
-#include "compare/inflate.hpp"
+#include "image/inflate.hpp"
 
 namespace aosuite::testing {
 

@@ -1,9 +1,9 @@
-// The inflater (compare/inflate.hpp) against zlib 1.2's inflate, which libspng uses: on
+// The inflater (image/inflate.hpp) against zlib 1.2's inflate, which libspng uses: on
 // streams zlib writes with every level, strategy, window and memory level, cut into pieces
 // and read into bands of every size, both paths give zlib's bytes; on those streams with bits
 // flipped, truncated or extended, and on hand-made streams for each of zlib's refusals, they
 // accept exactly what zlib accepts.
-#include "compare/inflate.hpp"
+#include "image/inflate.hpp"
 
 #include <gtest/gtest.h>
 #include <zlib.h>
@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "compare/inflate_tables.hpp"
+#include "image/inflate_tables.hpp"
 #include "tests/inflate_harness.hpp"
 
 namespace {

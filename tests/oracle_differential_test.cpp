@@ -14,7 +14,7 @@
 #include <string>
 
 #include "compare/band_compare.hpp"
-#include "compare/image_io.hpp"
+#include "image/image_io.hpp"
 #include "compare/opencv.hpp"
 #include "compare/resemble_json.hpp"
 

@@ -1,4 +1,4 @@
-// One PNG validity rule (compare/png_layout.hpp): the fast decoder, libspng's path, the
+// One PNG validity rule (image/png_layout.hpp): the fast decoder, libspng's path, the
 // check without pixels and the band reader accept and refuse the same files, and agree on
 // the pixels of those they accept. Every colour type, bit depth and interlace, each with
 // the corruptions found in the wild and a few harmless oddities.
@@ -9,8 +9,8 @@
 #include <random>
 
 #include "compare/band_compare.hpp"
-#include "compare/image_io.hpp"
-#include "compare/png_fast.hpp"
+#include "image/image_io.hpp"
+#include "image/png_fast.hpp"
 #include "png_fixture.hpp"
 
 namespace aosuite {

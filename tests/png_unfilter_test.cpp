@@ -2,7 +2,7 @@
 // cases: random filter sequences (so every mix of four rows the AVX2 kernel takes, and every
 // pair the SSE4.1 one takes), widths around the kernels' lead-in and lead-out, RGB and RGBA,
 // both kernel choices, laid out in place as the PNG reader lays them out.
-#include "compare/png_unfilter.hpp"
+#include "image/png_unfilter.hpp"
 
 #include <gtest/gtest.h>
 

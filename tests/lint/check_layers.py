@@ -15,17 +15,19 @@ import sys
 # Each layer and what it may include besides itself, lowest first.
 LAYERS = {
     "common": set(),
-    "compare": {"common"},
+    # Pictures in memory and every format: PNG, EXR, the rest through OpenImageIO.
+    "image": {"common"},
+    "compare": {"common", "image"},
     "renderer": {"common"},
-    "reference": {"common", "compare", "renderer"},
+    "reference": {"common", "image", "compare", "renderer"},
     # The image-regression tool: suites, goldens, reports. Other kinds of case (the AO bench's
     # rendered scenes) register themselves from above (harness/case_kind.hpp).
-    "harness": {"common", "compare"},
+    "harness": {"common", "image", "compare"},
     # The AO bench on top of the tool: rendered cases, its report section.
-    "ao": {"common", "compare", "renderer", "reference", "harness"},
+    "ao": {"common", "image", "compare", "renderer", "reference", "harness"},
     # The C++ library (include/aosuite/aosuite.hpp): the harness's verdict for a renderer's tests.
-    "api": {"common", "compare", "harness"},
-    "cli": {"common", "compare", "renderer", "reference", "harness", "ao"},
+    "api": {"common", "image", "compare", "harness"},
+    "cli": {"common", "image", "compare", "renderer", "reference", "harness", "ao"},
 }
 INCLUDE = re.compile(r'#include "([\w/]+)\.[ch]pp"')
 

@@ -1,4 +1,4 @@
-#include "compare/inflate_tables.hpp"
+#include "image/inflate_tables.hpp"
 
 #include <immintrin.h>
 

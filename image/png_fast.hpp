@@ -18,9 +18,9 @@
 #include <string>
 #include <vector>
 
-#include "compare/inflate.hpp"
-#include "compare/png_unfilter.hpp"
-#include "compare/rgba_image.hpp"
+#include "image/inflate.hpp"
+#include "image/png_unfilter.hpp"
+#include "image/rgba_image.hpp"
 
 namespace aosuite {
 

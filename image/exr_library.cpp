@@ -1,8 +1,8 @@
 // libaosuite_exr.so: reading and writing float EXR images with OpenEXR. It lives in its own
-// library, opened only when an EXR is read or written (compare/exr_file.cpp), so that PNG-only
+// library, opened only when an EXR is read or written (image/exr_file.cpp), so that PNG-only
 // processes never load it; only C types cross the boundary. (It used OpenImageIO once, whose
 // ~260 libraries took ~360 ms to load: more than the FLIP of a 1080p pair.)
-#include "compare/exr_library.hpp"
+#include "image/exr_library.hpp"
 
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
@@ -21,7 +21,7 @@
 #include <vector>
 
 #include "common/cpu_set.hpp"
-#include "compare/exr_header_walk.hpp"
+#include "image/exr_header_walk.hpp"
 
 namespace {
 
@@ -70,7 +70,7 @@ std::string channel_names(const Imf::ChannelList& list) {
 
 }  // namespace
 
-// The entry points' contracts are in compare/exr_library.hpp.
+// The entry points' contracts are in image/exr_library.hpp.
 extern "C" __attribute__((visibility("default"))) int aosuite_write_exr(
     const char* path, int width, int height, const float* pixels, char* err, std::size_t err_len) {
   try {

@@ -1,12 +1,12 @@
-#include "compare/image_file.hpp"
+#include "image/image_file.hpp"
 
 #include <fmt/format.h>
 
 #include "common/file_io.hpp"
-#include "compare/exr_file.hpp"
-#include "compare/image_io.hpp"
-#include "compare/other_formats.hpp"
-#include "compare/png_layout.hpp"
+#include "image/exr_file.hpp"
+#include "image/image_io.hpp"
+#include "image/other_formats.hpp"
+#include "image/png_layout.hpp"
 
 namespace aosuite {
 

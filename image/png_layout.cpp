@@ -1,4 +1,4 @@
-#include "compare/png_layout.hpp"
+#include "image/png_layout.hpp"
 
 #include <fmt/format.h>
 #include <isa-l/crc.h>
@@ -8,8 +8,8 @@
 
 #include "common/file_io.hpp"
 #include "common/printable.hpp"
-#include "compare/inflate.hpp"
-#include "compare/rgba_image.hpp"
+#include "image/inflate.hpp"
+#include "image/rgba_image.hpp"
 
 namespace aosuite {
 namespace {

@@ -1,4 +1,4 @@
-#include "compare/png_unfilter_quad.hpp"
+#include "image/png_unfilter_quad.hpp"
 
 #include <immintrin.h>
 

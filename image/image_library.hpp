@@ -1,6 +1,6 @@
-// libaosuite_oiio.so's C entry point (compare/image_library.cpp): every image format that
+// libaosuite_oiio.so's C entry point (image/image_library.cpp): every image format that
 // OpenImageIO reads, beyond PNG and EXR, which aosuite decodes itself. Only C types cross the
-// boundary: compare/other_formats.cpp opens the library only when a file is neither, so a PNG
+// boundary: image/other_formats.cpp opens the library only when a file is neither, so a PNG
 // comparison never pays OpenImageIO's start-up.
 #pragma once
 

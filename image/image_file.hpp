@@ -1,5 +1,5 @@
 // Reading an image file of any format aosuite reads into a Picture: the one entry point of the
-// readers (PNG and EXR here, the others through compare/other_formats.hpp).
+// readers (PNG and EXR here, the others through image/other_formats.hpp).
 #pragma once
 
 #include <cstdint>
@@ -7,7 +7,7 @@
 #include <span>
 #include <string>
 
-#include "compare/picture.hpp"
+#include "image/picture.hpp"
 
 namespace aosuite {
 

@@ -1,4 +1,4 @@
-#include "compare/exr_header_walk.hpp"
+#include "image/exr_header_walk.hpp"
 
 #include <cstdint>
 #include <cstring>

@@ -1,4 +1,4 @@
-#include "compare/other_formats.hpp"
+#include "image/other_formats.hpp"
 
 #include <fmt/format.h>
 
@@ -10,7 +10,7 @@
 #include "common/file_io.hpp"
 #include "common/printable.hpp"
 #include "common/sibling_library.hpp"
-#include "compare/image_library.hpp"
+#include "image/image_library.hpp"
 
 namespace aosuite {
 namespace {

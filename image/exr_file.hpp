@@ -1,4 +1,4 @@
-// EXR images through libaosuite_exr.so (compare/exr_library.cpp), which lies beside the
+// EXR images through libaosuite_exr.so (image/exr_library.cpp), which lies beside the
 // `aosuite` executable and is opened on the first EXR read or written: a process that touches
 // none never loads OpenImageIO.
 #pragma once
@@ -8,7 +8,7 @@
 #include <span>
 #include <string>
 
-#include "compare/rgba_image.hpp"
+#include "image/rgba_image.hpp"
 
 namespace aosuite {
 

@@ -1,4 +1,4 @@
-#include "compare/inflate.hpp"
+#include "image/inflate.hpp"
 
 #include <immintrin.h>
 #include <isa-l/igzip_lib.h>
@@ -7,7 +7,7 @@
 #include <array>
 #include <cstring>
 
-#include "compare/inflate_tables.hpp"
+#include "image/inflate_tables.hpp"
 
 namespace aosuite {
 

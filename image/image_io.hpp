@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "common/file_io.hpp"
-#include "compare/rgba_image.hpp"
+#include "image/rgba_image.hpp"
 
 namespace aosuite {
 
@@ -22,7 +22,7 @@ RgbaImage decode_png(std::span<const unsigned char> png, const std::string& name
 RgbaImage decode_png_general(std::span<const unsigned char> png, const std::string& name);
 RgbaImage read_png(const std::filesystem::path& path);
 // A 16-bit PNG kept at 16 bits: R, G, B (or grey alone) as v / 65535, alpha dropped
-// (compare/picture.hpp reads every kind of file).
+// (image/picture.hpp reads every kind of file).
 FloatImage decode_png16(std::span<const unsigned char> png, const std::string& name);
 // Checks that the PNG decodes, as decode_png would, and returns its size; for the common
 // 8-bit RGB(A) kind it skips unfiltering the pixels nobody will look at.

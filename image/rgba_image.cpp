@@ -1,4 +1,4 @@
-#include "compare/rgba_image.hpp"
+#include "image/rgba_image.hpp"
 
 #include <fmt/format.h>
 #include <sys/mman.h>

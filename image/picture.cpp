@@ -1,4 +1,4 @@
-#include "compare/picture.hpp"
+#include "image/picture.hpp"
 
 #include <fmt/format.h>
 
@@ -7,8 +7,8 @@
 #include <cmath>
 #include <cstring>
 
-#include "compare/image_io.hpp"
-#include "compare/png_layout.hpp"
+#include "image/image_io.hpp"
+#include "image/png_layout.hpp"
 
 namespace aosuite {
 

@@ -1,11 +1,11 @@
-#include "compare/png_unfilter.hpp"
+#include "image/png_unfilter.hpp"
 
 #include <immintrin.h>
 
 #include <cstdlib>
 #include <cstring>
 
-#include "compare/png_unfilter_quad.hpp"
+#include "image/png_unfilter_quad.hpp"
 
 namespace aosuite {
 namespace {

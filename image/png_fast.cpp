@@ -1,4 +1,4 @@
-#include "compare/png_fast.hpp"
+#include "image/png_fast.hpp"
 
 #include <fmt/format.h>
 #include <isa-l/crc.h>
@@ -10,9 +10,9 @@
 #include <vector>
 
 #include "common/file_io.hpp"
-#include "compare/png_layout.hpp"
-#include "compare/png_unfilter.hpp"
-#include "compare/rgba_image.hpp"
+#include "image/png_layout.hpp"
+#include "image/png_unfilter.hpp"
+#include "image/rgba_image.hpp"
 
 namespace aosuite {
 namespace {

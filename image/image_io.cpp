@@ -1,4 +1,4 @@
-#include "compare/image_io.hpp"
+#include "image/image_io.hpp"
 
 #include <fcntl.h>
 #include <fmt/format.h>
@@ -16,8 +16,8 @@
 #include <memory>
 #include <utility>
 
-#include "compare/png_fast.hpp"
-#include "compare/png_layout.hpp"
+#include "image/png_fast.hpp"
+#include "image/png_layout.hpp"
 
 namespace aosuite {
 namespace {

@@ -1,4 +1,4 @@
-#include "compare/exr_file.hpp"
+#include "image/exr_file.hpp"
 
 #include <fmt/format.h>
 
@@ -7,8 +7,8 @@
 
 #include "common/printable.hpp"
 #include "common/sibling_library.hpp"
-#include "compare/exr_library.hpp"
-#include "compare/image_io.hpp"
+#include "image/exr_library.hpp"
+#include "image/image_io.hpp"
 
 namespace aosuite {
 namespace {

@@ -6,7 +6,7 @@
 #include <span>
 #include <string>
 
-#include "compare/picture.hpp"
+#include "image/picture.hpp"
 
 namespace aosuite {
 

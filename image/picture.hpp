@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "compare/rgba_image.hpp"
+#include "image/rgba_image.hpp"
 
 namespace aosuite {
 

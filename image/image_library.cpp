@@ -1,5 +1,5 @@
-// libaosuite_oiio.so: other image formats through OpenImageIO (compare/image_library.hpp).
-#include "compare/image_library.hpp"
+// libaosuite_oiio.so: other image formats through OpenImageIO (image/image_library.hpp).
+#include "image/image_library.hpp"
 
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
