@@ -4,10 +4,10 @@
 
 #include "ao/scene_case.hpp"
 #include "common/file_io.hpp"
-#include "image/exr_file.hpp"
-#include "image/image_io.hpp"
 #include "compare/opencv.hpp"
 #include "harness/goldens.hpp"
+#include "image/exr_file.hpp"
+#include "image/image_io.hpp"
 #include "renderer/renderer.hpp"
 
 namespace aosuite::ao {

@@ -9,11 +9,11 @@
 #include <stdexcept>
 
 #include "common/file_io.hpp"
-#include "image/image_file.hpp"
-#include "image/image_io.hpp"
 #include "compare/metric.hpp"
 #include "harness/goldens.hpp"
 #include "harness/judge.hpp"
+#include "image/image_file.hpp"
+#include "image/image_io.hpp"
 
 namespace aosuite {
 namespace {

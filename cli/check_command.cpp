@@ -8,12 +8,12 @@
 
 #include "cli/commands.hpp"
 #include "common/folder_lock.hpp"
-#include "image/image_io.hpp"
 #include "harness/escape.hpp"
 #include "harness/html_report.hpp"
 #include "harness/junit.hpp"
 #include "harness/runner.hpp"
 #include "harness/suite_file.hpp"
+#include "image/image_io.hpp"
 
 namespace aosuite::cli {
 namespace {
@@ -45,9 +45,10 @@ void add_selection_options(CLI::App* cmd, HarnessArgs& a) {
                   "folder mode: allowed Resemble mismatch % per image (default 0, unless only "
                   "--gate is given)")
       ->check(CLI::Range(0.0, 100.0));
-  cmd->add_option("--max-channel-delta", a.max_channel_delta,
-                  "folder mode: the largest |new - golden| of any channel still passing (default 8, "
-                  "any with --max-mismatch: Resemble's `less` mode alone ignores up to 16 levels)")
+  cmd->add_option(
+         "--max-channel-delta", a.max_channel_delta,
+         "folder mode: the largest |new - golden| of any channel still passing (default 8, "
+         "any with --max-mismatch: Resemble's `less` mode alone ignores up to 16 levels)")
       ->check(CLI::Range(0, 255));
   cmd->add_option("--gate", a.gates,
                   "folder mode: METRIC.KEY=VALUE, as in `compare --gate` (e.g. flip.max_mean=0.02; "

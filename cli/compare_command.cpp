@@ -21,11 +21,11 @@
 #include "cli/compare_metrics.hpp"
 #include "common/thread_beside.hpp"
 #include "compare/band_compare.hpp"
+#include "compare/resemble.hpp"
+#include "compare/resemble_json.hpp"
 #include "image/image_file.hpp"
 #include "image/image_io.hpp"
 #include "image/png_layout.hpp"
-#include "compare/resemble.hpp"
-#include "compare/resemble_json.hpp"
 
 namespace aosuite::cli {
 namespace {

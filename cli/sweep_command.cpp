@@ -11,8 +11,8 @@
 #include "ao/sweep_report.hpp"
 #include "ao/sweep_run.hpp"
 #include "cli/commands.hpp"
-#include "image/image_io.hpp"
 #include "harness/runner.hpp"
+#include "image/image_io.hpp"
 
 namespace aosuite::cli {
 namespace {

@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
+#include "compare/resemble.hpp"
 #include "image/image_io.hpp"
 #include "image/picture.hpp"
-#include "compare/resemble.hpp"
 
 namespace aosuite {
 

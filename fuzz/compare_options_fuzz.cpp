@@ -6,10 +6,10 @@
 #include <nlohmann/json.hpp>
 #include <string_view>
 
-#include "image/image_io.hpp"
 #include "compare/resemble.hpp"
 #include "compare/resemble_json.hpp"
 #include "fuzz/fuzz_util.hpp"
+#include "image/image_io.hpp"
 
 namespace {
 

@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "image/exr_library.hpp"
 #include "fuzz/fuzz_util.hpp"
+#include "image/exr_library.hpp"
 
 namespace {
 

@@ -8,8 +8,8 @@
 #include <array>
 #include <vector>
 
-#include "image/inflate.hpp"
 #include "fuzz/fuzz_util.hpp"
+#include "image/inflate.hpp"
 #include "tests/inflate_harness.hpp"
 
 namespace {

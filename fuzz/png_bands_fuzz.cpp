@@ -6,8 +6,8 @@
 #include <optional>
 
 #include "compare/band_compare.hpp"
-#include "image/image_io.hpp"
 #include "fuzz/fuzz_util.hpp"
+#include "image/image_io.hpp"
 
 namespace {
 

@@ -4,9 +4,9 @@
 #include <cstring>
 #include <optional>
 
+#include "fuzz/fuzz_util.hpp"
 #include "image/image_io.hpp"
 #include "image/png_fast.hpp"
-#include "fuzz/fuzz_util.hpp"
 
 namespace {
 

@@ -11,9 +11,9 @@
 #include <set>
 #include <string_view>
 
-#include "image/image_io.hpp"
 #include "harness/case_kind.hpp"
 #include "harness/escape.hpp"
+#include "image/image_io.hpp"
 
 namespace aosuite::harness {
 

@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "image/rgba_image.hpp"
 #include "harness/suite.hpp"
+#include "image/rgba_image.hpp"
 
 namespace aosuite::harness {
 

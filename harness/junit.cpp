@@ -2,8 +2,8 @@
 
 #include <fmt/format.h>
 
-#include "image/image_io.hpp"
 #include "harness/escape.hpp"
+#include "image/image_io.hpp"
 
 namespace aosuite::harness {
 

@@ -12,8 +12,8 @@
 #include <fstream>
 #include <stdexcept>
 
-#include "image/image_io.hpp"
 #include "harness/escape.hpp"
+#include "image/image_io.hpp"
 
 namespace aosuite::harness {
 

@@ -12,14 +12,14 @@
 #include <thread>
 
 #include "common/content_hash.hpp"
-#include "image/exr_file.hpp"
-#include "image/image_file.hpp"
-#include "image/image_io.hpp"
 #include "harness/case_hash.hpp"
 #include "harness/case_kind.hpp"
 #include "harness/command.hpp"
 #include "harness/escape.hpp"
 #include "harness/goldens.hpp"
+#include "image/exr_file.hpp"
+#include "image/image_file.hpp"
+#include "image/image_io.hpp"
 
 namespace aosuite::harness {
 

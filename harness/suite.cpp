@@ -6,8 +6,8 @@
 #include <set>
 #include <stdexcept>
 
-#include "image/picture.hpp"
 #include "harness/escape.hpp"
+#include "image/picture.hpp"
 
 namespace aosuite::harness {
 

@@ -44,7 +44,7 @@ struct Tolerance {
   // levels per channel, so without a budget a global shading change of 12 levels passes: 8
   // unless the tolerance names a mismatch percentage alone (then any, as Resemble's gate).
   int max_channel_delta = kDefaultChannelDelta;
-  std::vector<resemble::Box> ignore;            // left, top, right, bottom, in pixels
+  std::vector<resemble::Box> ignore;  // left, top, right, bottom, in pixels
   std::filesystem::path
       mask;  // pixels where this PNG is not black (any of R, G, B > 0) are ignored
 };

@@ -9,9 +9,9 @@
 
 #include "common/file_io.hpp"
 #include "common/toml_reader.hpp"
-#include "image/picture.hpp"
 #include "harness/case_kind.hpp"
 #include "harness/escape.hpp"
+#include "image/picture.hpp"
 
 namespace aosuite::harness {
 namespace {

@@ -343,7 +343,7 @@ TEST_F(Judge, MismatchIsMeasuredAgainstTheAllowedPercentage) {
   g(cv::Rect(0, 0, 4, 3)).setTo(cv::Scalar(200, 0, 0, 255));  // 12 of 1200 pixels: 1 %
   const fs::path file = golden("g.png", g);
   Tolerance t;
-  EXPECT_EQ(run({file}, t).max_channel_delta, 100);  // over the default budget of 8 too
+  EXPECT_EQ(run({file}, t).max_channel_delta, 100);          // over the default budget of 8 too
   t.max_mismatch_percent = 0.99, t.max_channel_delta = 255;  // as a suite's percentage alone
   ImageVerdict v = run({file}, t);
   EXPECT_EQ(v.status, Status::kFail);

@@ -14,9 +14,9 @@
 #include <string>
 
 #include "compare/band_compare.hpp"
-#include "image/image_io.hpp"
 #include "compare/opencv.hpp"
 #include "compare/resemble_json.hpp"
+#include "image/image_io.hpp"
 
 namespace aosuite {
 namespace {
