@@ -4,7 +4,6 @@
 // registers the AO bench's case kind (ao/scene_cases.hpp).
 #include <dlfcn.h>
 
-#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <stdexcept>
@@ -69,15 +68,5 @@ extern "C" int aosuite_check_main(int argc, char** argv) {
   aosuite::cli::add_bless_command(app, rc);
   aosuite::cli::add_report_command(app, rc);
   add_gl_options(app);
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    if (e.get_exit_code() == 0) return app.exit(e);  // --help
-    return aosuite::cli::usage_error(argc > 1 ? argv[1] : nullptr, e.what());
-  } catch (...) {
-    // The launcher has its own C++ runtime (cli/CMakeLists.txt): nothing may unwind into it.
-    std::fputs("aosuite: unexpected error\n", stderr);
-    return aosuite::cli::kExitError;
-  }
-  return rc;
+  return aosuite::cli::run_library_app(app, argc, argv, rc);
 }

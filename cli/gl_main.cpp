@@ -2,7 +2,6 @@
 // OpenGL: Mesa and LLVM cost tens of milliseconds of start-up that `aosuite compare` must not
 // pay (OpenImageIO, ~360 ms, is loaded later still: only to write an EXR). Each command here
 // is also listed in main.cpp's kGlCommands.
-#include <cstdio>
 
 #include "ao/scene_cases.hpp"
 #include "cli/commands.hpp"
@@ -41,17 +40,7 @@ extern "C" int aosuite_gl_main(int argc, char** argv) {
   aosuite::cli::add_sweep_command(app, rc);
   aosuite::cli::add_gl_info_command(app, rc);
   add_gl_options(app);
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    if (e.get_exit_code() == 0) return app.exit(e);  // --help
-    return aosuite::cli::usage_error(argc > 1 ? argv[1] : nullptr, e.what());
-  } catch (...) {
-    // The launcher has its own C++ runtime (cli/CMakeLists.txt): nothing may unwind into it.
-    std::fputs("aosuite: unexpected error\n", stderr);
-    return aosuite::cli::kExitError;
-  }
-  return rc;
+  return aosuite::cli::run_library_app(app, argc, argv, rc);
 }
 
 // Called by libaosuite_check.so when a suite or report holds scene cases.
