@@ -1,8 +1,7 @@
 // Entry point of libaosuite_gl.so, which `aosuite` loads only for the commands that need
 // OpenGL: Mesa and LLVM cost tens of milliseconds of start-up that `aosuite compare` must not
 // pay (OpenImageIO, ~360 ms, is loaded later still: only to write an EXR). Each command here
-// is also listed in main.cpp's kGlCommands.
-
+// is also listed in main.cpp's kLibraryCommands.
 #include "ao/scene_cases.hpp"
 #include "cli/commands.hpp"
 #include "cli/usage_error.hpp"

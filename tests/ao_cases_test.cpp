@@ -11,6 +11,7 @@
 #include "png_fixture.hpp"
 #include "renderer/params.hpp"
 #include "renderer/scene/scene.hpp"
+#include "suite_file_fixture.hpp"
 
 namespace aosuite::harness {
 namespace {
@@ -25,25 +26,10 @@ Case sized(int width, int height) {
   return k;
 }
 
-class SceneSuite : public ::testing::Test {
+// Suite files with scene cases: the AO bench's kind registered first.
+class SceneSuite : public test::SuiteFile {
  protected:
   SceneSuite() { ao::register_scene_cases(); }
-  fs::path write(const std::string& text) {
-    const fs::path file = dir_ / "suites" / "s.toml";
-    fs::create_directories(file.parent_path());
-    std::ofstream(file) << text;
-    return file;
-  }
-  // The message load_suite throws for `text`, or "" if it loads.
-  std::string error_of(const std::string& text) {
-    try {
-      load_suite(write(text));
-    } catch (const std::runtime_error& e) {
-      return e.what();
-    }
-    return "";
-  }
-  test::TempDir dir_;
 };
 
 // With no `techniques`, a case renders every registered screen-space technique (the registry

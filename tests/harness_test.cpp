@@ -16,31 +16,14 @@
 #include "harness/runner.hpp"
 #include "harness/suite_file.hpp"
 #include "png_fixture.hpp"
+#include "suite_file_fixture.hpp"
 
 namespace aosuite::harness {
 namespace {
 
 namespace fs = std::filesystem;
 
-class SuiteFile : public ::testing::Test {
- protected:
-  fs::path write(const std::string& text) {
-    const fs::path file = dir_ / "suites" / "s.toml";
-    fs::create_directories(file.parent_path());
-    std::ofstream(file) << text;
-    return file;
-  }
-  // The message load_suite throws for `text`, or "" if it loads.
-  std::string error_of(const std::string& text) {
-    try {
-      load_suite(write(text));
-    } catch (const std::runtime_error& e) {
-      return e.what();
-    }
-    return "";
-  }
-  test::TempDir dir_;
-};
+using SuiteFile = test::SuiteFile;
 
 // The default goldens folder does not follow the suite file out of the project: like reports/,
 // it is goldens/<name> in the working directory; only the suite's own key is relative to it.
