@@ -50,7 +50,7 @@ struct Renderer::State {
   int width = 0, height = 0;
   GBuffer gbuffer;
   Texture ao, scratch, no_ao, with_ao, ao_only;
-  Framebuffer ao_fb, scratch_fb, blend_fb;
+  Framebuffer ao_fb, blend_fb;
 
   void allocate(int w, int h) {
     width = w, height = h;
@@ -62,7 +62,6 @@ struct Renderer::State {
     ao_only = make_texture(GL_RGBA8, w, h);
     // Full-resolution AO targets share the G-buffer's depth so sky pixels are never shaded.
     ao_fb = make_framebuffer({ao.get()}, gbuffer.zbuffer.get());
-    scratch_fb = make_framebuffer({scratch.get()}, gbuffer.zbuffer.get());
     blend_fb = make_framebuffer({no_ao.get(), with_ao.get(), ao_only.get()});
   }
 
@@ -145,8 +144,7 @@ Images Renderer::render(const Scene& scene, const View& view, const RenderSettin
         timers.push_back(std::move(t));
     }
     if (s.params.blur != Blur::kNone) {
-      timers.push_back(st.blur_pass.run(st.gbuffer, s.params.blur, st.ao.get(), st.ao_fb.get(),
-                                        st.scratch.get(), st.scratch_fb.get()));
+      timers.push_back(st.blur_pass.run(st.gbuffer, s.params.blur, st.ao.get(), st.scratch.get()));
     }
   }
   if (s.outputs.no_ao || s.outputs.with_ao || s.outputs.ao_only) {
