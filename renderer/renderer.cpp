@@ -49,14 +49,13 @@ struct Renderer::State {
   // Targets, reallocated when the size changes.
   int width = 0, height = 0;
   GBuffer gbuffer;
-  Texture ao, scratch, no_ao, with_ao, ao_only;
+  Texture ao, no_ao, with_ao, ao_only;
   Framebuffer ao_fb, blend_fb;
 
   void allocate(int w, int h) {
     width = w, height = h;
     gbuffer = make_gbuffer(w, h);
     ao = make_texture(GL_R32F, w, h);
-    scratch = make_texture(GL_RG32F, w, h);  // the blur's (AO, depth) pairs
     no_ao = make_texture(GL_RGBA8, w, h);
     with_ao = make_texture(GL_RGBA8, w, h);
     ao_only = make_texture(GL_RGBA8, w, h);
@@ -144,7 +143,7 @@ Images Renderer::render(const Scene& scene, const View& view, const RenderSettin
         timers.push_back(std::move(t));
     }
     if (s.params.blur != Blur::kNone) {
-      timers.push_back(st.blur_pass.run(st.gbuffer, s.params.blur, st.ao.get(), st.scratch.get()));
+      timers.push_back(st.blur_pass.run(st.gbuffer, s.params.blur, st.ao.get()));
     }
   }
   if (s.outputs.no_ao || s.outputs.with_ao || s.outputs.ao_only) {

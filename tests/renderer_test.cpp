@@ -296,9 +296,8 @@ class BlurFixture {
     GBuffer g = make_gbuffer(kSize, kSize);
     glTextureSubImage2D(g.depth.get(), 0, 0, 0, kSize, kSize, GL_RED, GL_FLOAT, depth.data());
     Texture ao_tex = make_texture(GL_R32F, kSize, kSize);
-    Texture scratch = make_texture(GL_RG32F, kSize, kSize);
     glTextureSubImage2D(ao_tex.get(), 0, 0, 0, kSize, kSize, GL_RED, GL_FLOAT, ao.data());
-    pass_.run(g, kind, ao_tex.get(), scratch.get());
+    pass_.run(g, kind, ao_tex.get());
     Plane out(ao.size());
     glGetTextureImage(ao_tex.get(), 0, GL_RED, GL_FLOAT,
                       static_cast<GLsizei>(out.size() * sizeof(float)), out.data());

@@ -10,6 +10,7 @@
 #define AOSUITE_GL_ENTRY_POINTS(X)                                       \
   X(PFNGLATTACHSHADERPROC, glAttachShader)                               \
   X(PFNGLBEGINQUERYPROC, glBeginQuery)                                   \
+  X(PFNGLBINDBUFFERPROC, glBindBuffer)                                   \
   X(PFNGLBINDBUFFERBASEPROC, glBindBufferBase)                           \
   X(PFNGLBINDFRAMEBUFFERPROC, glBindFramebuffer)                         \
   X(PFNGLBINDIMAGETEXTUREPROC, glBindImageTexture)                       \

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 
 #include "renderer/frame.hpp"
 #include "renderer/technique.hpp"
@@ -12,15 +13,18 @@ namespace aosuite::renderer {
 class BlurPass {
  public:
   BlurPass();
-  // Blurs `ao` (R32F or wider) in place, using `scratch` (same size, RG32F) between the two
-  // axes.
-  PassTimer run(const GBuffer& g, Blur blur, GLuint ao, GLuint scratch) const;
+  // Blurs `ao` (R32F, the G-buffer's size) in place.
+  PassTimer run(const GBuffer& g, Blur blur, GLuint ao);
 
  private:
   // [gaussian, bilateral][axis]: the first axis reads AO and the G-buffer's depth and writes
   // (AO, depth) pairs, the second reads the pairs. The kind is compiled in, not a uniform,
   // so the Gaussian does no depth arithmetic.
   std::array<std::array<Program, 2>, 2> axes_;
+  // Buffers, not textures, between the axes: on llvmpipe a buffer load or store costs a
+  // fraction of a texelFetch or imageStore.
+  Buffer pairs_, blurred_;
+  std::size_t pixels_ = 0;
 };
 
 }  // namespace aosuite::renderer

@@ -1,6 +1,9 @@
 // Scalable AO (McGuire, Mara, Luebke 2012): a linear-depth pyramid, then the AO pass, which
 // uses depth only (no G-buffer normals).
+#include <fmt/format.h>
+
 #include <algorithm>
+#include <array>
 
 #include "renderer/passes/ao_pass.hpp"
 #include "renderer/passes/ao_uniforms.hpp"
@@ -8,39 +11,43 @@
 namespace aosuite::renderer {
 namespace {
 
-constexpr int kLevels = 6;  // level 0 and MAX_MIP_LEVEL = 5 minified levels
+constexpr int kLevels = 6;  // level 0 and MAX_MIP_LEVEL = 5 minified levels (sao_pyramid.glsl)
+constexpr int kGroup = 8;   // sao_minify.comp's workgroup side
+
+GLuint groups(int n) { return static_cast<GLuint>((n + kGroup - 1) / kGroup); }
 
 class SaoPass final : public AoPass {
  public:
   SaoPass()
-      : minify_(make_program({"fullscreen.vert", "sao_minify.frag"})),
+      : minify_(make_program({"sao_minify.comp"})),
         ao_(make_program({"fullscreen.vert", "sao.frag"})) {}
 
   std::vector<PassTimer> run(const GBuffer& g, const Camera& camera, const AoParams& params,
                              GLuint out_fb) override {
     if (g.width != width_ || g.height != height_) allocate(g.width, g.height);
     PassTimer pyramid_timer("sao_pyramid");
-    glCopyImageSubData(g.depth.get(), GL_TEXTURE_2D, 0, 0, 0, 0, pyramid_.get(), GL_TEXTURE_2D, 0,
-                       0, 0, 0, g.width, g.height, 1);
-    const GLuint tex = pyramid_.get();
+    // Level 0 is the G-buffer's linear depth, copied into the buffer by the driver.
+    glBindBuffer(GL_PIXEL_PACK_BUFFER, pyramid_.get());
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glGetTextureImage(g.depth.get(), 0, GL_RED, GL_FLOAT, level_bytes(0), nullptr);
+    glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, pyramid_.get());
+    set_level_uniforms(minify_.get());
+    glUseProgram(minify_.get());
     for (int level = 1; level < levels_; ++level) {
-      // Sample level - 1 only, so drawing into `level` of the same texture is no feedback loop.
-      glTextureParameteri(tex, GL_TEXTURE_BASE_LEVEL, level - 1);
-      glTextureParameteri(tex, GL_TEXTURE_MAX_LEVEL, level - 1);
-      bind_textures(minify_.get(), {{"u_depth", tex}});
-      draw_fullscreen(level_fbs_[static_cast<std::size_t>(level)].get(),
-                      std::max(1, g.width >> level), std::max(1, g.height >> level));
+      glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);  // reads the level below
+      glProgramUniform1i(minify_.get(), glGetUniformLocation(minify_.get(), "u_level"), level);
+      glDispatchCompute(groups(size(level)[0]), groups(size(level)[1]), 1);
     }
-    glTextureParameteri(tex, GL_TEXTURE_BASE_LEVEL, 0);
-    glTextureParameteri(tex, GL_TEXTURE_MAX_LEVEL, levels_ - 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     pyramid_timer.stop();
 
     PassTimer ao_timer("ao");
     const GLuint p = ao_.get();
     set_camera_uniforms(p, camera);
     uniforms_.upload(ao_uniform_block(params, camera));
-    glProgramUniform1i(p, glGetUniformLocation(p, "u_max_level"), levels_ - 1);
-    bind_textures(p, {{"u_depth", tex}});
+    set_level_uniforms(p);
+    glUseProgram(p);
     draw_geometry_pixels(out_fb, g.width, g.height);
     ao_timer.stop();
     std::vector<PassTimer> times;
@@ -50,21 +57,40 @@ class SaoPass final : public AoPass {
   }
 
  private:
+  // sao_pyramid.glsl's level_size.
+  std::array<int, 2> size(int level) const {
+    return {std::max(1, width_ >> level), std::max(1, height_ >> level)};
+  }
+  GLsizei level_bytes(int level) const {
+    return static_cast<GLsizei>(sizeof(float)) * size(level)[0] * size(level)[1];
+  }
+
   void allocate(int width, int height) {
     width_ = width, height_ = height;
     levels_ = 1;  // a tiny image has fewer levels than MAX_MIP_LEVEL asks for
     while (levels_ < kLevels && (std::max(width, height) >> levels_) > 0) ++levels_;
-    pyramid_ = make_texture(GL_R32F, width, height, levels_);
-    level_fbs_.clear();
+    GLsizei bytes = 0;
     for (int level = 0; level < levels_; ++level) {
-      level_fbs_.push_back(make_framebuffer({pyramid_.get()}, 0, level));
+      offsets_[static_cast<std::size_t>(level)] = bytes / static_cast<GLsizei>(sizeof(float));
+      bytes += level_bytes(level);
+    }
+    pyramid_ = make_buffer(nullptr, static_cast<std::size_t>(bytes));
+  }
+
+  void set_level_uniforms(GLuint program) const {
+    glProgramUniform1i(program, glGetUniformLocation(program, "u_levels"), levels_);
+    glProgramUniform2i(program, glGetUniformLocation(program, "u_size"), width_, height_);
+    for (int level = 0; level < levels_; ++level) {
+      glProgramUniform1i(
+          program, glGetUniformLocation(program, fmt::format("u_level_offset[{}]", level).c_str()),
+          offsets_[static_cast<std::size_t>(level)]);
     }
   }
 
   Program minify_, ao_;
   AoUniformBuffer uniforms_;
-  Texture pyramid_;
-  std::vector<Framebuffer> level_fbs_;
+  Buffer pyramid_;  // sao_pyramid.glsl's layout
+  std::array<GLint, kLevels> offsets_{};
   int width_ = 0, height_ = 0, levels_ = 1;
 };
 

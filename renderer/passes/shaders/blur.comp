@@ -3,23 +3,23 @@
 // across a depth edge are down-weighted by their relative depth difference, so occlusion
 // does not bleed from a foreground object onto the background behind it. Sky stays 1.
 // Each invocation blurs kRun consecutive pixels along the axis from one window of
-// kRun + 2 kRadius taps, so a pixel costs 3.5 texel fetches instead of 21: on llvmpipe a
-// fetch was most of a tap's cost, and the blur half of the 1080p SAO frame. Each pixel sums
+// kRun + 2 kRadius taps, so a pixel costs 3.5 loads instead of 21: on llvmpipe a load was
+// most of a tap's cost, and the blur half of the 1080p SAO frame. Each pixel sums
 // the same taps in the same order as a per-pixel loop, so the output is the same to the bit.
-// Like SAO's blur, the first axis writes (AO, depth) pairs so the second reads one texel per
-// tap instead of two. RUN, GROUP and BILATERAL come from blur_pass.cpp.
+// Like SAO's blur, the first axis writes (AO, depth) pairs so the second reads one value per
+// tap instead of two. RUN, GROUP, BILATERAL and SECOND_AXIS come from blur_pass.cpp.
 layout(local_size_x = GROUP, local_size_y = GROUP) in;
-#ifdef PACKED_INPUT
-uniform sampler2D u_ao;  // RG: AO, linear depth
-vec2 tap(ivec2 q) { return texelFetch(u_ao, q, 0).rg; }
-layout(r32f) uniform writeonly image2D u_out;  // AO
-void store(ivec2 p, vec2 v) { imageStore(u_out, p, vec4(v.x)); }
+uniform ivec2 u_size;
+layout(std430, binding = 0) buffer Pairs { vec2 pairs[]; };  // (AO, depth), row by row
+#ifdef SECOND_AXIS
+vec2 tap(ivec2 q) { return pairs[q.y * u_size.x + q.x]; }
+layout(std430, binding = 1) writeonly buffer Blurred { float blurred[]; };  // AO, row by row
+void store(ivec2 p, vec2 v) { blurred[p.y * u_size.x + p.x] = v.x; }
 #else
 uniform sampler2D u_ao;  // R: AO
 uniform sampler2D u_depth;
 vec2 tap(ivec2 q) { return vec2(texelFetch(u_ao, q, 0).r, texelFetch(u_depth, q, 0).r); }
-layout(rg32f) uniform writeonly image2D u_out;  // (AO, depth)
-void store(ivec2 p, vec2 v) { imageStore(u_out, p, vec4(v, 0.0, 0.0)); }
+void store(ivec2 p, vec2 v) { pairs[p.y * u_size.x + p.x] = v; }
 #endif
 uniform ivec2 u_axis;       // (1, 0) or (0, 1)
 uniform float u_sharpness;  // 1 / relative depth difference at which a tap's weight is 0
@@ -41,9 +41,8 @@ void blur_pixel(vec2 window[kWindow], ivec2 first, int j, int last) {
   if (along(p) > last) return;
   vec2 centre = window[j + kRadius];
   float z = centre.y;
-  if (z <= 0.0) { store(p, vec2(1.0, 0.0)); return; }
 #ifdef BILATERAL
-  float k = u_sharpness / z;
+  float k = z > 0.0 ? u_sharpness / z : 0.0;
 #endif
   float sum = 0.0, wsum = 0.0;
   for (int i = -kRadius; i <= kRadius; ++i) {
@@ -56,11 +55,12 @@ void blur_pixel(vec2 window[kWindow], ivec2 first, int j, int last) {
     sum += w * t.x;
     wsum += w;
   }
-  store(p, vec2(wsum > 0.0 ? sum / wsum : centre.x, z));
+  // Sky (z = 0) stays 1: every tap weighs 0 there. One store for both, not one per branch.
+  store(p, z > 0.0 ? vec2(wsum > 0.0 ? sum / wsum : centre.x, z) : vec2(1.0, 0.0));
 }
 
 void main() {
-  ivec2 hi = textureSize(u_ao, 0) - 1;
+  ivec2 hi = u_size - 1;
   ivec2 across = ivec2(1) - u_axis;
   // Invocation (x, y) of the horizontal axis runs pixels (kRun x .. kRun x + kRun - 1, y).
   ivec2 first = ivec2(gl_GlobalInvocationID.xy) * (u_axis * kRun + across);

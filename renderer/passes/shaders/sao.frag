@@ -9,14 +9,13 @@
 // scene units (design/ao-techniques.md 3.2), so with the scene scaled to 1e-5 it swallowed
 // every v.n and nothing occluded. As a share of r it is the published 0.012 at r = 1, and f
 // scales as r^5 (r^6 * r / r^2) like the normalization, so A does not depend on scene units.
-uniform sampler2D u_depth;  // the pyramid, levels 0..5
+#include "sao_pyramid.glsl"
 #include "ao_uniforms.glsl"
 layout(location = 0) out float o_ao;
 
 const int kLogMaxOffset = 3;
-uniform int u_max_level;  // MAX_MIP_LEVEL = 5, fewer for tiny images
 
-// The full-resolution pixel whose depth sao_minify.frag kept for texel q of level m. Each
+// The full-resolution pixel whose depth sao_minify.comp kept for texel q of level m. Each
 // level keeps texel 2q + (q.y & 1, q.x & 1) of the level below, so going down the offsets
 // alternate between (b.y, b.x) and (b.x, b.y), b = q & 1: a closed form (a loop over the
 // levels cost a fifth of the pass on llvmpipe).
@@ -27,7 +26,7 @@ ivec2 pyramid_source(ivec2 q, int m) {
 }
 
 vec3 position_at(ivec2 q, vec2 size) {
-  float z = texelFetch(u_depth, q, 0).r;
+  float z = pyramid_depth(q, 0);
   return z > 0.0 ? view_position(vec2(q) + 0.5, size, z) : vec3(0.0);
 }
 
@@ -47,8 +46,8 @@ vec3 depth_normal(ivec2 p, vec3 c, vec2 size) {
 
 void main() {
   ivec2 p = ivec2(gl_FragCoord.xy);
-  vec2 size = vec2(textureSize(u_depth, 0));
-  float z = texelFetch(u_depth, p, 0).r;
+  vec2 size = vec2(u_size);
+  float z = pyramid_depth(p, 0);
   if (z <= 0.0) { o_ao = 1.0; return; }
   vec3 c = view_position(vec2(p) + 0.5, size, z);
   vec3 n = depth_normal(p, c, size);
@@ -67,9 +66,9 @@ void main() {
     float a = (float(i) + 0.5) / float(u_samples);
     float h = a * ss_radius;
     ivec2 q = ivec2(floor(vec2(p) + 0.5 + h * dir));
-    int m = clamp(findMSB(max(int(h), 1)) - kLogMaxOffset, 0, u_max_level);
-    ivec2 qm = clamp(q >> m, ivec2(0), textureSize(u_depth, m) - 1);
-    float zq = texelFetch(u_depth, qm, m).r;
+    int m = clamp(findMSB(max(int(h), 1)) - kLogMaxOffset, 0, u_levels - 1);
+    ivec2 qm = clamp(q >> m, ivec2(0), level_size(m) - 1);
+    float zq = pyramid_depth(qm, m);
     if (zq <= 0.0) continue;
     // The reference unprojects zq at the tap's own pixel, but zq belongs to a pixel up to 2^m
     // away: on a steep depth gradient (a ground plane seen at grazing angles) that lifts the
