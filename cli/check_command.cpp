@@ -273,17 +273,24 @@ int run_check(const HarnessArgs& a) {
                 {.json = a.json, .single_file = a.single_file, .skipped = &suite.skipped});
 }
 
-// `bless --failed --report DIR` (or --from-report) with no suite named: the suite the report
-// was made from, as its results.json says (the path as check was given it).
+// `bless --failed --report DIR` (or --from-report) with no suite named: the suite file, or
+// folder mode's two folders, the report was made from, as its results.json says (absolute, so
+// from any directory).
 HarnessArgs with_report_suite(HarnessArgs a) {
   const bool folders = !a.actual.empty() || !a.expected.empty();
   if (!a.suite.empty() || folders || !(a.failed || a.from_report) || a.report.empty()) return a;
   const hs::RunResults last = hs::read_results(a.report);
   if (last.suite_file.empty()) {
-    throw std::invalid_argument(
-        fmt::format("{} was made in folder mode: name --actual DIR --expected DIR", a.report));
+    throw std::invalid_argument(fmt::format(
+        "{}: names no suite file or folders; name the suite (or --actual DIR --expected DIR)",
+        (fs::path(a.report) / "results.json").string()));
   }
-  a.suite = last.suite_file, a.report_suite = last.suite;
+  if (!last.expected_folder.empty()) {
+    a.actual = last.suite_file, a.expected = last.expected_folder;
+  } else {
+    a.suite = last.suite_file, a.report_suite = last.suite;
+    if (a.goldens.empty()) a.goldens = last.goldens;  // goldens/<name> was cwd-relative
+  }
   return a;
 }
 

@@ -188,6 +188,8 @@ json to_json(const RunResults& r) {
   for (const CaseResult& c : r.cases) cases.push_back(to_json(c));
   return {{"suite", r.suite},
           {"suite_file", printable(r.suite_file)},
+          {"goldens", printable(r.goldens)},
+          {"expected_folder", printable(r.expected_folder)},
           {"environment", printable(r.environment)},
           {"platform", r.platform},
           {"bless_prefix", printable(r.bless_prefix)},
@@ -200,6 +202,8 @@ RunResults run_from_json(const json& j) {
   RunResults r;
   r.suite = j.at("suite"), r.suite_file = j.at("suite_file"), r.environment = j.at("environment");
   r.platform = j.at("platform"), r.shard = j.at("shard");
+  r.goldens = j.value("goldens", std::string());
+  r.expected_folder = j.value("expected_folder", std::string());
   r.bless_prefix = j.value("bless_prefix", std::string());
   r.approve_prefix = j.value("approve_prefix", std::string());
   if (!valid_name(r.suite))

@@ -58,7 +58,11 @@ struct CaseResult {
 };
 
 struct RunResults {
-  std::string suite, suite_file, platform;
+  std::string suite, platform;
+  // Absolute, so `bless --failed --report DIR` finds them from any directory: the suite file
+  // and its goldens folder, or folder mode's --actual and --expected (expected_folder empty
+  // for a suite file).
+  std::string suite_file, goldens, expected_folder;
   std::string environment;  // what made the images (the GL implementation), if a kind says
   // "aosuite bless SUITE [--goldens DIR]", shell-quoted: what the printed bless commands start
   // with.

@@ -472,10 +472,15 @@ std::vector<const Case*> select_some(const Suite& suite, const Selection& s) {
       printable(suite.file.string()), printable(why), suite.cases.size(), list_command(suite)));
 }
 
+// What results.json records of the suite's paths: absolute, as bless may run elsewhere.
+std::string absolute_path(const fs::path& p) { return fs::absolute(p).lexically_normal().string(); }
+
 RunResults start(const Suite& suite, const RunOptions& o, const std::vector<const Case*>& cases,
                  bool may_render, Makers& first) {
   RunResults run;
-  run.suite = suite.name, run.suite_file = suite.file.string();
+  run.suite = suite.name, run.suite_file = absolute_path(suite.file);
+  run.goldens = absolute_path(suite.goldens);
+  run.expected_folder = suite.expected.empty() ? "" : absolute_path(suite.expected);
   run.bless_prefix = bless_prefix(suite);
   run.approve_prefix = run.bless_prefix + " --from-report --report " +
                        shell_quote(o.report_dir.lexically_normal().string());
@@ -641,7 +646,8 @@ RunResults bless(const Suite& suite, const BlessOptions& b) {
       }
       if (cases.empty()) {
         RunResults none;
-        none.suite = suite.name, none.suite_file = suite.file.string();
+        none.suite = suite.name, none.suite_file = absolute_path(suite.file);
+        none.expected_folder = suite.expected.empty() ? "" : absolute_path(suite.expected);
         return none;
       }
     }

@@ -112,6 +112,7 @@ Suite folder_suite(const fs::path& actual, const fs::path& expected, const Toler
   suite.file = actual;
   suite.goldens = expected;
   suite.goldens_given = true;
+  suite.expected = expected;
   suite.bless_prefix = "aosuite bless --actual " + shell_quote(actual.string()) + " --expected " +
                        shell_quote(expected.string());
   suite.check_args =

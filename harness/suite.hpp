@@ -115,8 +115,9 @@ struct Suite {
   std::vector<Case> cases;
   // "aosuite bless SUITE" or "aosuite bless --actual A --expected E": how commands name it.
   std::string bless_prefix;
-  std::string check_args;        // what follows "aosuite check " to list its cases
-  std::vector<Skipped> skipped;  // folder mode: files under either folder that are no case
+  std::string check_args;          // what follows "aosuite check " to list its cases
+  std::vector<Skipped> skipped;    // folder mode: files under either folder that are no case
+  std::filesystem::path expected;  // folder mode: --expected (`file` is --actual); else empty
 };
 
 // Folder mode (as reg-cli): one image case per PNG under `actual` or `expected`, paired by

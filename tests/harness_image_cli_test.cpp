@@ -533,8 +533,32 @@ TEST_F(ImageCases, BlessFromAReportChecksTheSuiteItNames) {
   std::ofstream(results, std::ios::trunc) << honest;
   r = aosuite("bless --failed --report reports/t");
   EXPECT_EQ(r.rc, 0) << r.out << r.err;
-  EXPECT_NE(r.out.find("suite s/t.toml (from reports/t/results.json)"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("/s/t.toml (from reports/t/results.json)"), std::string::npos) << r.out;
   EXPECT_EQ(golden(), read_file(dir_ / "reports" / "t" / "cases" / "chart" / "chart.png"));
+}
+
+// results.json names the suite file, or folder mode's two folders, by absolute path: `bless
+// --failed --report DIR` works from any directory, not only the one check ran in.
+TEST_F(ImageCases, BlessFromAReportWorksFromAnyDirectory) {
+  fs::create_directories(dir_ / "elsewhere");
+  const auto from_elsewhere = [&](const std::string& args) {
+    return test::run_shell(
+        "cd " + (dir_ / "elsewhere").string() + " && " + aosuite_bin() + " " + args, dir_.path());
+  };
+  ASSERT_EQ(aosuite("check s/t.toml").rc, 1);  // NEW
+  test::Outcome r = from_elsewhere("bless --failed --report ../reports/t");
+  EXPECT_EQ(r.rc, 0) << r.out << r.err;
+  EXPECT_EQ(golden(), read_file(dir_ / "reports" / "t" / "cases" / "chart" / "chart.png"));
+
+  fs::create_directories(dir_ / "act");
+  fs::create_directories(dir_ / "exp");
+  fs::copy_file(dir_ / "s" / "red.png", dir_ / "act" / "x.png");
+  fs::copy_file(dir_ / "s" / "green.png", dir_ / "exp" / "x.png");
+  ASSERT_EQ(aosuite("check --actual act --expected exp --report reports/f").rc, 1);
+  r = from_elsewhere("bless --failed --report ../reports/f");
+  EXPECT_EQ(r.rc, 0) << r.out << r.err;
+  EXPECT_EQ(read_file(dir_ / "exp" / "x.png"), read_file(dir_ / "s" / "red.png"));
+  EXPECT_FALSE(fs::exists(dir_ / "elsewhere" / "exp"));
 }
 
 // A noisy command's output is kept as its last 64 KiB, after a line giving its full size.
