@@ -81,9 +81,9 @@ Measurement measure(const Metric& metric, const Picture& reference, const Pictur
   }
   if (!reference.is_float) return metric.measure(reference, test, request);
   Picture a = reference, b = test;  // FloatImage copies: the originals stay as read
+  if (a.floats.channels != b.floats.channels) widen_grey(a.floats), widen_grey(b.floats);
   const std::uint64_t nonfinite = count_nonfinite(a.floats, b.floats, !metric.raw_floats);
-  Measurement m =
-      metric.raw_floats ? metric.measure(reference, test, request) : metric.measure(a, b, request);
+  Measurement m = metric.measure(a, b, request);
   m.nonfinite = nonfinite;
   return m;
 }

@@ -17,14 +17,24 @@ ImageSize Picture::size() const {
 }
 
 std::string Picture::kind() const {
-  if (!is_float) return "8-bit RGBA";
+  if (!is_float) return "8-bit " + format;  // decoded to RGBA, whatever channels the file had
   return fmt::format("{}{}, {} channel{}", floats.srgb ? "16-bit " : "", format, floats.channels,
                      floats.channels == 1 ? "" : "s");
 }
 
 bool same_kind(const Picture& a, const Picture& b) {
   if (a.is_float != b.is_float) return false;
-  return !a.is_float || (a.floats.srgb == b.floats.srgb && a.floats.channels == b.floats.channels);
+  const int ca = a.floats.channels, cb = b.floats.channels;
+  return !a.is_float || (a.floats.srgb == b.floats.srgb && (ca == cb || ca * cb == 3));
+}
+
+void widen_grey(FloatImage& f) {
+  if (f.channels != 1) return;
+  std::vector<float> rgb(f.data.size() * 3);
+  for (std::size_t i = 0; i < f.data.size(); ++i)
+    rgb[3 * i] = rgb[3 * i + 1] = rgb[3 * i + 2] = f.data[i];
+  f.data = std::move(rgb);
+  f.channels = 3;
 }
 
 bool is_image_name(const std::filesystem::path& name) {

@@ -25,9 +25,12 @@ struct Picture {
   std::string kind() const;
 };
 
-// Whether two pictures hold the same kind of samples (8-bit; 16-bit sRGB; linear float) and as
-// many channels, whatever their file formats: what a metric can compare.
+// Whether two pictures hold the same kind of samples (8-bit; 16-bit sRGB; linear float), with
+// as many channels or grey against R, G, B, whatever their file formats: what a metric can
+// compare. Grey counts as R = G = B at every depth, as an 8-bit grey file decodes to RGBA.
 bool same_kind(const Picture& a, const Picture& b);
+// A one-channel (grey) float image as three equal channels; others as they are.
+void widen_grey(FloatImage& f);
 
 // The image formats aosuite reads: PNG and EXR itself, the others through OpenImageIO
 // (libaosuite_oiio.so, opened on the first such file). For messages.

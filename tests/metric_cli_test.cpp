@@ -7,6 +7,7 @@
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfOutputFile.h>
 #include <OpenImageIO/imageio.h>
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -309,6 +310,53 @@ TEST(MetricCli, ExrAttributeSizesAreHeldToTheFile) {
   EXPECT_NE(read.out.find("rmse: value 0"), std::string::npos) << read.out;
 }
 
+// Grey is R = G = B at every depth: an 8-bit grey PNG, a 16-bit grey PNG and a grey (Y) EXR
+// each measure against an R, G, B image of the same values as 0, and against other values as
+// the three-channel images would.
+TEST(MetricCli, GreyCountsAsEqualRgbAtEveryDepth) {
+  test::TempDir dir;
+  auto p = [&](const char* name) { return (dir / name).string(); };
+  // A 4x4 PNG of one value per sample: colour type 0 (grey) or 2 (RGB), 8 or 16 bits.
+  const auto flat_png = [&](const char* name, int bits, int colour_type, unsigned value) {
+    const int samples = 4 * (colour_type == 2 ? 3 : 1);
+    test::Bytes row;
+    for (int i = 0; i < samples; ++i) {
+      if (bits == 16) row.push_back(static_cast<unsigned char>(value >> 8));
+      row.push_back(static_cast<unsigned char>(value));
+    }
+    test::write_bytes(dir / name, test::make_png(4, 4, bits, colour_type, {row, row, row, row}));
+  };
+  flat_png("g8.png", 8, 0, 100);
+  flat_png("c8.png", 8, 2, 100);
+  flat_png("d8.png", 8, 2, 151);
+  flat_png("g16.png", 16, 0, 25700);
+  flat_png("c16.png", 16, 2, 25700);
+  flat_png("d16.png", 16, 2, 38807);
+  write_exr(dir / "g.exr", 4, 4, {"Y"}, std::vector<float>(16, 0.25f));
+  write_exr(dir / "c.exr", 4, 4, {"R", "G", "B"}, std::vector<float>(48, 0.25f));
+  write_exr(dir / "d.exr", 4, 4, {"R", "G", "B"}, std::vector<float>(48, 0.45f));
+  for (const char* depth : {"8", "16"}) {
+    const std::string g = p(fmt::format("g{}.png", depth).c_str());
+    for (const char* metric : {"rmse", "ssim", "flip"}) {
+      SCOPED_TRACE(fmt::format("{}-bit {}", depth, metric));
+      const Outcome same =
+          compare(dir, fmt::format("{} {} --metric {} --json", g,
+                                   p(fmt::format("c{}.png", depth).c_str()), metric));
+      ASSERT_EQ(same.rc, 0) << same.err;
+    }
+    const Outcome diff = compare(dir, fmt::format("{} {} --metric rmse --json", g,
+                                                  p(fmt::format("d{}.png", depth).c_str())));
+    ASSERT_EQ(diff.rc, 0) << diff.err;
+    EXPECT_NEAR(nlohmann::json::parse(diff.out)["rmse"]["value"].get<double>(), 51.0 / 255, 1e-6);
+  }
+  const Outcome same = compare(dir, p("g.exr") + " " + p("c.exr") + " --metric rmse --json");
+  ASSERT_EQ(same.rc, 0) << same.err;
+  EXPECT_EQ(nlohmann::json::parse(same.out)["rmse"]["value"].get<double>(), 0.0);
+  const Outcome diff = compare(dir, p("g.exr") + " " + p("d.exr") + " --metric rmse --json");
+  ASSERT_EQ(diff.rc, 0) << diff.err;
+  EXPECT_NEAR(nlohmann::json::parse(diff.out)["rmse"]["value"].get<double>(), 0.2, 1e-6);
+}
+
 TEST(MetricCli, BadInputIsOneLineAndWritesNothing) {
   test::TempDir dir;
   write_png_rgba8(dir / "small.png", cv::Mat(4, 4, CV_8UC4, cv::Scalar::all(9)));
@@ -321,8 +369,7 @@ TEST(MetricCli, BadInputIsOneLineAndWritesNothing) {
   auto p = [&](const char* name) { return (dir / name).string(); };
   const std::vector<std::pair<std::string, std::string>> cases = {
       {p("small.png") + " " + p("wide.png") + " --metric flip", "wide.png: 6x4, but"},
-      {p("grey.exr") + " " + p("rgb.exr") + " --metric rmse", "EXR, 3 channels, but"},
-      {p("grey.exr") + " " + p("small.png") + " --metric ssim", "8-bit RGBA, but"},
+      {p("grey.exr") + " " + p("small.png") + " --metric ssim", "small.png: 8-bit PNG, but"},
       {p("depth.exr") + " " + p("grey.exr") + " --metric rmse",
        "depth.exr: EXR has no R, G, B or Y channel (it has: Z)"},
       {p("cut.exr") + " " + p("grey.exr") + " --metric rmse", "cut.exr: "},
