@@ -111,8 +111,10 @@ int main(int argc, char** argv) {
       return aosuite::cli::usage_error(
           nullptr, fmt::format("a command is required ({}; aosuite --help)", command_list()));
     }
-    const bool compare = std::strcmp(argv[1], "compare") == 0;
-    return aosuite::cli::usage_error(compare ? "compare" : nullptr, e.what());
+    const char* command = std::strcmp(argv[1], "compare") == 0 ? "compare" : nullptr;
+    if (dynamic_cast<const CLI::ExtrasError*>(&e))
+      return aosuite::cli::usage_error(command, aosuite::cli::extras_problem(app, command));
+    return aosuite::cli::usage_error(command, e.what());
   } catch (const std::exception& e) {
     fmt::print(stderr, "aosuite: {}\n", e.what());
     return aosuite::cli::kExitError;

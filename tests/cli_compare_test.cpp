@@ -229,6 +229,34 @@ TEST_F(CliCompare, UnknownCommandIsNamed) {
   }
 }
 
+// A mistyped option is named as typed, with the nearest the command has; an extra argument is
+// named as typed (CLI11 alone listed them reversed and suggested nothing). Built-in and library
+// commands alike.
+TEST_F(CliCompare, MistypedOptionsAreNamedWithASuggestion) {
+  const std::string a = path("a.png"), b = path("b.png");
+  const std::pair<std::string, std::string> cases[] = {
+      {"compare --metrc flip " + a + " " + b,
+       "aosuite compare: unknown option '--metrc'; did you mean '--metric'? (aosuite compare "
+       "--help lists them)\n"},
+      {"compare " + a + " " + b + " " + a + " " + b,
+       "aosuite compare: unexpected argument '" + a +
+           "' (aosuite compare --help lists what it takes)\n"},
+      {"bless --faild --report r",
+       "aosuite bless: unknown option '--faild'; did you mean "
+       "'--failed'? (aosuite bless --help lists them)\n"},
+      {"check --suit x.toml",
+       "aosuite check: unknown option '--suit' (aosuite check --help "
+       "lists them)\n"},
+      {"compare -x " + a + " " + b,
+       "aosuite compare: unknown option '-x' (aosuite compare --help lists them)\n"},
+  };
+  for (const auto& [args, message] : cases) {
+    const Outcome r = test::run_shell(std::string(AOSUITE_BIN) + " " + args, dir_.path());
+    EXPECT_EQ(r.rc, 2) << args;
+    EXPECT_EQ(r.err, message) << args;
+  }
+}
+
 // Pipes have no size (st_size 0): they are read to end-of-file.
 TEST_F(CliCompare, ReadsPipesAndFifos) {
   const std::string bin = AOSUITE_BIN;
