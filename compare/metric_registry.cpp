@@ -6,10 +6,10 @@
 
 namespace aosuite::metric {
 
-extern const Metric kFlip, kSsim, kRmse, kPsnr;
+extern const Metric kFlip, kSsim, kRmse, kPsnr, kDensity;
 
 std::span<const Metric* const> all() {
-  static constexpr std::array<const Metric*, 4> kAll{&kFlip, &kSsim, &kRmse, &kPsnr};
+  static constexpr std::array<const Metric*, 5> kAll{&kFlip, &kSsim, &kRmse, &kPsnr, &kDensity};
   return kAll;
 }
 
