@@ -1,6 +1,5 @@
 // `aosuite compare A B`: Resemble.js 5.0.0's comparison of two PNGs, and `--batch` for many.
 #include <fmt/format.h>
-#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <cctype>
@@ -23,6 +22,7 @@
 #include "compare/band_compare.hpp"
 #include "compare/resemble.hpp"
 #include "compare/resemble_json.hpp"
+#include "compare/verdict.hpp"
 #include "image/image_file.hpp"
 #include "image/image_io.hpp"
 #include "image/png_layout.hpp"
@@ -152,8 +152,17 @@ rs::Options options_from(const CompareArgs& args) {
   return o;
 }
 
-bool passes(const rs::Result& r, double threshold) {
-  return r.same_dimensions && r.raw_mismatch_percentage <= threshold;
+// The verdict of compare::decide, with Resemble.js's own rule as the default allowance:
+// mismatch <= --threshold on images of one size, and no channel limit.
+verdict::Verdict decide(const std::optional<rs::Result>& r, double threshold, const MetricRun& m) {
+  std::optional<verdict::ResembleFigures> figures;
+  if (r) {
+    figures = verdict::ResembleFigures{.same_size = r->same_dimensions,
+                                       .mismatch_percent = r->raw_mismatch_percentage,
+                                       .mismatch_text = r->mismatch_percentage};
+  }
+  return verdict::decide(figures ? &*figures : nullptr, {.max_mismatch_percent = threshold},
+                         m.outcomes);
 }
 
 // What the run may hold: both files, and when they are decoded whole, both images and what
@@ -266,12 +275,11 @@ void print_human(const std::string& a, const std::string& b, const rs::Result& r
 
 // With gates, the JSON says what the exit status says: "verdict" ("same" or "different") and
 // the gates that do not hold. Without, it is Resemble.js's own, key for key.
-void add_verdict(const MetricPlan& plan, bool pass, const MetricRun& m,
-                 nlohmann::ordered_json& out) {
+void add_verdict(const MetricPlan& plan, const verdict::Verdict& v, nlohmann::ordered_json& out) {
   if (std::ranges::none_of(plan.metrics, [](const metric::Gates& g) { return !g.limits.empty(); }))
     return;
-  out["verdict"] = pass ? "same" : "different";
-  out["failed_gates"] = m.failed;
+  out["verdict"] = v.pass ? "same" : "different";
+  out["failed_gates"] = v.failed;
 }
 
 // Metrics first: their errors (sizes, kinds) come before Resemble writes its diff image.
@@ -286,17 +294,18 @@ int run_single(const CompareArgs& args) {
   std::optional<rs::Result> r;
   if (plan.resemble) r = compare_files(args.a, args.b, options, args.diff, budget);
   if (!plan.heatmap.empty()) write_png_rgba8(plan.heatmap, heatmap);
-  const bool pass = (!r || passes(*r, threshold)) && m.failed.empty();
+  const verdict::Verdict v = decide(r, threshold, m);
   if (args.json) {
     nlohmann::ordered_json extra = m.json;
-    add_verdict(plan, pass, m, extra);
+    add_verdict(plan, v, extra);
     fmt::print("{}\n", r ? rs::result_json(*r, extra.empty() ? nullptr : extra) : extra.dump());
-    return pass ? kExitSame : kExitDifferent;
+    return v.pass ? kExitSame : kExitDifferent;
   }
-  if (r) print_human(args.a, args.b, *r, passes(*r, threshold));
+  if (r) print_human(args.a, args.b, *r, decide(r, threshold, {}).pass);
   for (const std::string& line : m.lines) fmt::print("{} vs {}: {}\n", args.a, args.b, line);
-  if (!m.failed.empty()) fmt::print("gates: {} -> different\n", fmt::join(m.failed, "; "));
-  return pass ? kExitSame : kExitDifferent;
+  const verdict::Verdict gates = decide(std::nullopt, threshold, m);
+  if (!gates.pass) fmt::print("gates: {} -> different\n", gates.message());
+  return v.pass ? kExitSame : kExitDifferent;
 }
 
 // resemble-oracle's batch format: `A<TAB>B`, `A B`, or a JSON object with a, b, id, diff
@@ -343,10 +352,10 @@ int run_batch(const CompareArgs& args) {
       for (const auto& [key, value] : m.json.items()) extra[key] = value;
       std::optional<rs::Result> r;
       if (plan.resemble) r = compare_files(a, b, o, diff, budget);
-      const bool pass = (!r || passes(*r, threshold)) && m.failed.empty();
-      add_verdict(plan, pass, m, extra);
+      const verdict::Verdict v = decide(r, threshold, m);
+      add_verdict(plan, v, extra);
       fmt::print("{}\n", r ? rs::result_json(*r, extra) : extra.dump());
-      if (!pass) worst = std::max(worst, kExitDifferent);
+      if (!v.pass) worst = std::max(worst, kExitDifferent);
     } catch (const std::exception& e) {
       extra["error"] = fmt::format("{}: line {}: {}", args.batch, line_no, e.what());
       fmt::print("{}\n", extra.dump());

@@ -43,8 +43,7 @@ MetricRun run_metrics(const MetricPlan& plan, const std::string& a, const std::s
     for (const metric::Value& v : m.values) line += fmt::format(" {} {:.6g}", v.key, v.value);
     if (m.nonfinite) line += fmt::format(" ({} NaN/Inf pixels)", m.nonfinite);
     run.lines.push_back(line);
-    for (const metric::Outcome& o : metric::judge(g, m))
-      if (!o.pass) run.failed.push_back(o.text());
+    for (metric::Outcome& o : metric::judge(g, m)) run.outcomes.push_back(std::move(o));
     if (map) *heatmap = std::move(m.map);
   }
   return run;

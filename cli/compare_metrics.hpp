@@ -25,8 +25,8 @@ MetricPlan plan_metrics(const std::vector<std::string>& names,
 
 struct MetricRun {
   nlohmann::ordered_json json = nlohmann::ordered_json::object();  // {"flip": {...}, ...}
-  std::vector<std::string> failed;  // the gates that do not hold, as text
-  std::vector<std::string> lines;   // one per metric, for people
+  std::vector<metric::Outcome> outcomes;  // every gate's, for verdict::decide
+  std::vector<std::string> lines;         // one per metric, for people
 };
 
 // Measures every planned metric of `b` against `a` (nothing is written; see write_heatmap).

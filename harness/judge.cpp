@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <stdexcept>
 
+#include "compare/verdict.hpp"
 #include "image/image_file.hpp"
 #include "image/image_io.hpp"
 #include "image/png_layout.hpp"
@@ -187,17 +188,10 @@ void measure_gates(const Picture& golden, const Picture& render, const Tolerance
   }
 }
 
-std::string failed_gates(const ImageVerdict& v) {
-  std::string out;
-  for (const metric::Outcome& o : v.outcomes)
-    if (!o.pass) out += (out.empty() ? "" : ", ") + o.text();
-  return out;
-}
-
-// Resemble's gate on an 8-bit image; true when it holds (or the tolerance does not ask for it).
-// With `counted`, the mismatch is a percentage of the counted pixels, not of the frame.
-bool resemble_gate(const RgbaImage& golden, const RgbaImage& render, const Tolerance& t,
-                   const Counted* counted, ImageVerdict& v) {
+// Resemble's figures on an 8-bit image, into `v`. With `counted`, the mismatch is a percentage
+// of the counted pixels, not of the frame.
+void resemble_figures(const RgbaImage& golden, const RgbaImage& render, const Tolerance& t,
+                      const Counted* counted, ImageVerdict& v) {
   const RgbaImage judged = without_ignored(render, golden, t, counted);
   const resemble::Result r = resemble::compare(golden, judged, resemble_options(t, false));
   v.mismatch_percent = r.raw_mismatch_percentage;
@@ -208,15 +202,6 @@ bool resemble_gate(const RgbaImage& golden, const RgbaImage& render, const Toler
     v.mismatch_text = fmt::format("{:.2f}", v.mismatch_percent);
   }
   v.max_channel_delta = max_channel_delta(golden, judged);
-  const bool within =
-      v.mismatch_percent <= t.max_mismatch_percent && v.max_channel_delta <= t.max_channel_delta;
-  if (!t.resemble || within) return true;
-  v.message = fmt::format("mismatch {}% (allowed {}%)", v.mismatch_text, t.max_mismatch_percent);
-  if (t.max_channel_delta < 255) {
-    v.message += fmt::format(", max channel delta {} (allowed {})", v.max_channel_delta,
-                             t.max_channel_delta);
-  }
-  return false;
 }
 
 // The metrics' view of a PNG: its own pixels, a 16-bit one at 16 bits; an 8-bit one already
@@ -250,7 +235,6 @@ ImageVerdict against(std::string_view image, std::span<const unsigned char> rend
           "the EXR files differ (without a metric gate, EXR images are compared byte for byte)";
       return v;
     }
-    bool pass = true;
     if (!is_float) {
       const RgbaImage golden = decode_rgba8(bytes, golden_file.string(), kMaxFileBytes);
       if (golden.width() != render.width() || golden.height() != render.height()) {
@@ -259,7 +243,7 @@ ImageVerdict against(std::string_view image, std::span<const unsigned char> rend
                                 render.width(), render.height());
         return v;
       }
-      pass = resemble_gate(golden, render, t, counted, v);
+      resemble_figures(golden, render, t, counted, v);
       if (!t.gates.empty()) {
         try {
           measure_gates(metric_picture(bytes, golden, golden_file.string()),
@@ -282,9 +266,14 @@ ImageVerdict against(std::string_view image, std::span<const unsigned char> rend
       }
       measure_gates(golden, rendered, t, golden_file, image, want_map, counted, v);
     }
-    const std::string failed = failed_gates(v);
-    if (!failed.empty()) v.message += (v.message.empty() ? "" : "; ") + failed;
-    v.status = pass && failed.empty() ? Status::kPass : Status::kFail;
+    const verdict::ResembleFigures figures{.mismatch_percent = v.mismatch_percent,
+                                           .mismatch_text = v.mismatch_text,
+                                           .max_channel_delta = v.max_channel_delta};
+    const verdict::Verdict d =
+        verdict::decide(!is_float && t.resemble ? &figures : nullptr,
+                        {t.max_mismatch_percent, t.max_channel_delta}, v.outcomes);
+    v.message = d.message();
+    v.status = d.pass ? Status::kPass : Status::kFail;
   } catch (const std::exception& e) {
     v.status = Status::kError;
     v.message = e.what();

@@ -1,4 +1,5 @@
 // `aosuite compare` as a user runs it: exit codes, messages, and nothing written on error.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <sys/resource.h>
 #include <sys/stat.h>
@@ -225,6 +226,38 @@ TEST_F(CliCompare, UnknownCommandIsNamed) {
         << args << ": " << r.err;
     if (*args) {
       EXPECT_NE(r.err.find("unknown command 'foo'"), std::string::npos) << r.err;
+    }
+  }
+}
+
+// One rule decides `compare` and `check`: the same pair under the same limits fails for the same
+// reasons, said in the same words (compare --json's failed_gates; folder mode's message in
+// results.json), whichever limits fail: Resemble's, a gate's, both or neither.
+TEST_F(CliCompare, CompareAndCheckGiveOneVerdict) {
+  std::filesystem::create_directories(dir_ / "actual");
+  std::filesystem::create_directories(dir_ / "expected");
+  std::filesystem::copy_file(path("a.png"), dir_ / "expected" / "x.png");
+  std::filesystem::copy_file(path("b.png"), dir_ / "actual" / "x.png");
+  for (const char* mismatch : {"0", "1"}) {
+    for (const char* rmse : {"0.0001", "1"}) {
+      SCOPED_TRACE(fmt::format("mismatch {} rmse {}", mismatch, rmse));
+      const std::string limits = fmt::format("--gate rmse.max={}", rmse);
+      const Outcome c = run(dir_, fmt::format("{} {} --metric resemble --mode less --threshold {} "
+                                              "{} --json",
+                                              path("a.png"), path("b.png"), mismatch, limits));
+      const auto failed = nlohmann::json::parse(c.out)["failed_gates"];
+      std::string said;
+      for (const auto& f : failed) said += (said.empty() ? "" : "; ") + f.get<std::string>();
+      const Outcome k = test::run_shell(
+          fmt::format("cd {} && {} check --actual actual --expected expected --report r "
+                      "--max-mismatch {} --max-channel-delta 255 {}",
+                      dir_.path().string(), AOSUITE_BIN, mismatch, limits),
+          dir_.path());
+      EXPECT_EQ(c.rc, failed.empty() ? 0 : 1) << c.out;
+      EXPECT_EQ(k.rc, c.rc) << k.out << k.err;
+      std::ifstream results(dir_ / "r" / "results.json");
+      const auto image = nlohmann::json::parse(results)["cases"][0]["images"][0];
+      EXPECT_EQ(image.value("message", ""), said);
     }
   }
 }

@@ -1,0 +1,40 @@
+// The one rule that turns measurements of two images into a verdict, for `compare`, `check`
+// and folder mode alike: Resemble's mismatch within its allowance on images of one size, the
+// largest channel difference within its allowance, and every metric gate holding. What failed
+// is said in one form everywhere: "mismatch 0.42% (allowed 0.1%)", "flip mean 0.031 > 0.02".
+// The callers differ only in their defaults (compare: Resemble.js's threshold 0 and no channel
+// limit; a suite: its tolerance), never in the rule.
+#pragma once
+
+#include <span>
+#include <string>
+#include <vector>
+
+#include "compare/metric.hpp"
+
+namespace aosuite::verdict {
+
+struct ResembleAllowance {
+  double max_mismatch_percent = 0;
+  int max_channel_delta = 255;  // 255: any (Resemble.js itself has no such limit)
+};
+
+// What Resemble's comparison found (a channel delta of -1: not measured).
+struct ResembleFigures {
+  bool same_size = true;
+  double mismatch_percent = 0;
+  std::string mismatch_text;  // Resemble's two-decimal misMatchPercentage
+  int max_channel_delta = -1;
+};
+
+struct Verdict {
+  bool pass = true;
+  std::vector<std::string> failed;  // each failed limit, in the order above
+  std::string message() const;      // "; "-joined
+};
+
+// `resemble` null: Resemble's comparison is not part of this verdict (metrics only).
+Verdict decide(const ResembleFigures* resemble, const ResembleAllowance& allowed,
+               std::span<const metric::Outcome> gates);
+
+}  // namespace aosuite::verdict
