@@ -33,6 +33,7 @@ nlohmann::ordered_json row_json(const Row& r, bool unbounded) {
                            {"intensity", r.intensity},
                            {"params", r.params},
                            {"ao_gl_ms", r.gl_ms},
+                           {"geometry_pixels", r.geometry_pixels},
                            {"error", to_json(r.error)},
                            {"frame", to_json(r.frame)}};
   if (unbounded) j["error_unbounded"] = to_json(r.unbounded);
@@ -48,6 +49,7 @@ Row row_from_json(const nlohmann::json& j) {
   r.radius = j.at("radius"), r.intensity = j.at("intensity");
   r.params = j.at("params").get<std::map<std::string, std::string>>();
   r.gl_ms = j.at("ao_gl_ms");
+  r.geometry_pixels = j.value("geometry_pixels", -1);  // -1: a row written before it was kept
   r.error = error_report_from_json(j.at("error"));
   r.frame = ref::frame_error_from_json(j.at("frame"));
   if (j.contains("error_unbounded")) r.unbounded = error_stats_from_json(j.at("error_unbounded"));

@@ -21,6 +21,9 @@ struct Row {
   int width = 0, height = 0, samples = 0;
   float radius = 0, intensity = 0;
   double gl_ms = 0;  // the AO passes' GPU time (median of the runs)
+  // Pixels that drew geometry: 0 when the view sees none, whose errors are then of the
+  // background alone (`sweep` warns).
+  int geometry_pixels = 0;
   reference::ErrorReport error;
   reference::ErrorStats unbounded;
   reference::FrameError frame;  // the final image's FLIP and SSIM against the reference's

@@ -105,6 +105,7 @@ void sweep_view(rd::Renderer& renderer, const SweepGrid& g, const harness::Selec
                   radius,
                   intensity,
                   t.gl_ms,
+                  t.images.geometry_pixels,
                   ref::measure_error(t.images.ao, at_radius, t.images.depth, metric),
                   {},
                   {},

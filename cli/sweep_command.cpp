@@ -6,6 +6,9 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <set>
+#include <string>
+#include <utility>
 
 #include "ao/sweep_merge.hpp"
 #include "ao/sweep_report.hpp"
@@ -61,7 +64,14 @@ int run_sweep(const std::string& grid_file, const std::vector<std::string>& reso
   }
   harness::Selection shard;
   if (!shard_text.empty()) harness::set_shard(shard, shard_text);
-  const ao::SweepResult sweep = ao::run_sweep(g, shard, [&g](const ao::Row& row) {
+  std::set<std::pair<std::string, std::string>> empty_views;  // warned once each
+  const ao::SweepResult sweep = ao::run_sweep(g, shard, [&](const ao::Row& row) {
+    if (row.geometry_pixels == 0 && empty_views.emplace(row.scene, row.view).second) {
+      fmt::print(stderr,
+                 "aosuite sweep: warning: view '{}' of {} draws no geometry (everything clipped "
+                 "or background): its rows measure only the background\n",
+                 row.view, row.scene);
+    }
     fmt::print("{} {} {}x{} {} s={} r={:g} k={:g}: {:.1f} ms, RMSE {:.4f}{}\n", row.scene, row.view,
                row.width, row.height, ao::row_label(row), row.samples, row.radius, row.intensity,
                row.gl_ms, row.error.all.rmse,

@@ -269,6 +269,20 @@ allow_empty = true
   EXPECT_EQ(r.rc, 0) << r.err;
   EXPECT_NE(r.err.find("warning: view 'away' of"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("draws no geometry"), std::string::npos) << r.err;
+  std::ofstream(dir_ / "suites" / "g.toml") << R"(name = "g"
+scenes = ["away.toml"]
+resolutions = [[32, 18]]
+runs = 1
+rays = 4
+[techniques.sao]
+samples = [4]
+radius = [1, 2]
+)";
+  r = aosuite("sweep suites/g.toml --out swept");
+  EXPECT_EQ(r.rc, 0) << r.err;
+  const std::string warning = "warning: view 'away' of away draws no geometry";
+  ASSERT_NE(r.err.find(warning), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find(warning), r.err.rfind(warning)) << "once per view, not per row: " << r.err;
 }
 
 // A run that judges nothing is never green, and leaves the last report as it was.
