@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <string>
+
 namespace aosuite::verdict {
 
 std::string Verdict::message() const {
@@ -9,6 +11,28 @@ std::string Verdict::message() const {
   for (const std::string& f : failed) out += (out.empty() ? "" : "; ") + f;
   return out;
 }
+
+namespace {
+
+// The two-sided budgets' lower ends, and the differing pixels' upper end.
+void budgets(const ResembleFigures& r, const ResembleAllowance& a,
+             std::vector<std::string>& failed) {
+  if (r.max_channel_delta >= 0 && r.max_channel_delta < a.min_channel_delta) {
+    failed.push_back(fmt::format(
+        "max channel delta {} (budget {}..{}: the difference it allows for is gone; tighten it)",
+        r.max_channel_delta, a.min_channel_delta, a.max_channel_delta));
+  }
+  if (r.differing_pixels < 0) return;
+  const bool over = a.max_differing_pixels >= 0 && r.differing_pixels > a.max_differing_pixels;
+  if (over || r.differing_pixels < a.min_differing_pixels) {
+    failed.push_back(fmt::format(
+        "{} differing pixels (budget {}..{}{})", r.differing_pixels, a.min_differing_pixels,
+        a.max_differing_pixels < 0 ? std::string("any") : std::to_string(a.max_differing_pixels),
+        over ? "" : ": the difference it allows for is gone; tighten it"));
+  }
+}
+
+}  // namespace
 
 Verdict decide(const ResembleFigures* resemble, const ResembleAllowance& allowed,
                std::span<const metric::Outcome> gates) {
@@ -28,6 +52,7 @@ Verdict decide(const ResembleFigures* resemble, const ResembleAllowance& allowed
         }
         v.failed.push_back(std::move(why));
       }
+      budgets(*resemble, allowed, v.failed);
     }
   }
   for (const metric::Outcome& o : gates)

@@ -14,9 +14,15 @@
 
 namespace aosuite::verdict {
 
+// Two-sided budgets, as Mozilla's reftest fuzzy(minDiff-maxDiff, minPixels-maxPixels): a
+// minimum above 0 says the case is known to differ by at least that much, so a difference that
+// disappears (a fix, or a golden that no longer shows the known defect) fails and the budget
+// is tightened, rather than left to hide the next change.
 struct ResembleAllowance {
   double max_mismatch_percent = 0;
   int max_channel_delta = 255;  // 255: any (Resemble.js itself has no such limit)
+  int min_channel_delta = 0;
+  long long min_differing_pixels = 0, max_differing_pixels = -1;  // -1: any number
 };
 
 // What Resemble's comparison found (a channel delta of -1: not measured).
@@ -25,6 +31,7 @@ struct ResembleFigures {
   double mismatch_percent = 0;
   std::string mismatch_text;  // Resemble's two-decimal misMatchPercentage
   int max_channel_delta = -1;
+  long long differing_pixels = -1;  // pixels with any channel changed; -1: not counted
 };
 
 struct Verdict {

@@ -31,7 +31,10 @@ std::string judge_hash(const Case& c, const std::string& input,
       .add(t.foreground_only)
       .add(t.mode)
       .add(t.max_mismatch_percent)
-      .add(t.max_channel_delta);
+      .add(t.max_channel_delta)
+      .add(t.min_channel_delta)
+      .add(t.min_differing_pixels)
+      .add(t.max_differing_pixels);
   const auto add_gates = [&](const std::vector<metric::Gates>& gates) {
     h.add(gates.size());
     for (const metric::Gates& g : gates) {

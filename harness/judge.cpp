@@ -99,13 +99,33 @@ RgbaImage without_ignored(const RgbaImage& render, const RgbaImage& golden, cons
   return out;
 }
 
-// The largest |a - b| of any R, G, B or A sample.
-int max_channel_delta(const RgbaImage& a, const RgbaImage& b) {
+// The largest |a - b| of any R, G, B or A sample, and the pixels where any differs.
+void channel_differences(const RgbaImage& a, const RgbaImage& b, ImageVerdict& v) {
   const std::size_t n = a.view().bytes();
   int hi = 0;
-  for (std::size_t i = 0; i < n; ++i)
-    hi = std::max(hi, std::abs(int(a.data()[i]) - int(b.data()[i])));
-  return hi;
+  long long pixels = 0;
+  for (std::size_t i = 0; i < n; i += 4) {
+    int pixel = 0;
+    for (std::size_t c = i; c < i + 4; ++c)
+      pixel = std::max(pixel, std::abs(int(a.data()[c]) - int(b.data()[c])));
+    hi = std::max(hi, pixel), pixels += pixel > 0;
+  }
+  v.max_channel_delta = hi, v.differing_pixels = pixels;
+}
+
+verdict::ResembleAllowance allowance(const Tolerance& t) {
+  return {.max_mismatch_percent = t.max_mismatch_percent,
+          .max_channel_delta = t.max_channel_delta,
+          .min_channel_delta = t.min_channel_delta,
+          .min_differing_pixels = t.min_differing_pixels,
+          .max_differing_pixels = t.max_differing_pixels};
+}
+
+verdict::ResembleFigures figures(const ImageVerdict& v) {
+  return {.mismatch_percent = v.mismatch_percent,
+          .mismatch_text = v.mismatch_text,
+          .max_channel_delta = v.max_channel_delta,
+          .differing_pixels = v.differing_pixels};
 }
 
 resemble::Options resemble_options(const Tolerance& t, bool diff) {
@@ -201,7 +221,7 @@ void resemble_figures(const RgbaImage& golden, const RgbaImage& render, const To
     v.mismatch_percent = n ? 100.0 * double(r.mismatch_count) / double(n) : 0.0;
     v.mismatch_text = fmt::format("{:.2f}", v.mismatch_percent);
   }
-  v.max_channel_delta = max_channel_delta(golden, judged);
+  channel_differences(golden, judged, v);
 }
 
 // The metrics' view of a PNG: its own pixels, a 16-bit one at 16 bits; an 8-bit one already
@@ -225,7 +245,11 @@ ImageVerdict against(std::string_view image, std::span<const unsigned char> rend
   try {
     const std::vector<unsigned char> bytes = read_file(golden_file, kMaxFileBytes);
     if (std::equal(bytes.begin(), bytes.end(), render_bytes.begin(), render_bytes.end())) {
-      v.status = Status::kPass, v.identical = true, v.mismatch_text = "0.00";
+      // Nothing to measure, but a two-sided budget's minimum still judges "no difference".
+      v.identical = true, v.mismatch_text = "0.00";
+      const verdict::ResembleFigures none = figures(v);
+      const verdict::Verdict d = verdict::decide(t.resemble ? &none : nullptr, allowance(t), {});
+      v.status = d.pass ? Status::kPass : Status::kFail, v.message = d.message();
       return v;
     }
     const bool is_float = render.empty();
@@ -266,12 +290,9 @@ ImageVerdict against(std::string_view image, std::span<const unsigned char> rend
       }
       measure_gates(golden, rendered, t, golden_file, image, want_map, counted, v);
     }
-    const verdict::ResembleFigures figures{.mismatch_percent = v.mismatch_percent,
-                                           .mismatch_text = v.mismatch_text,
-                                           .max_channel_delta = v.max_channel_delta};
+    const verdict::ResembleFigures found = figures(v);
     const verdict::Verdict d =
-        verdict::decide(!is_float && t.resemble ? &figures : nullptr,
-                        {t.max_mismatch_percent, t.max_channel_delta}, v.outcomes);
+        verdict::decide(!is_float && t.resemble ? &found : nullptr, allowance(t), v.outcomes);
     v.message = d.message();
     v.status = d.pass ? Status::kPass : Status::kFail;
   } catch (const std::exception& e) {

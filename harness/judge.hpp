@@ -23,13 +23,14 @@ Status parse_status(std::string_view name);
 struct ImageVerdict {
   std::string image;  // no_ao | with_ao | ao_only | ao_float, or an image case's own
   Status status = Status::kError;
-  bool identical = false;        // byte-identical to the golden: nothing was compared
-  double mismatch_percent = 0;   // Resemble's rawMisMatchPercentage against `golden`
-  std::string mismatch_text;     // its misMatchPercentage ("0.42")
-  int max_channel_delta = 0;     // largest |new - golden| over unignored pixels
-  std::filesystem::path golden;  // the accepted golden closest to the render
-  std::string message;           // why it failed or could not be judged
-  RgbaImage diff;                // Resemble's diff image, when asked and not passing
+  bool identical = false;          // byte-identical to the golden: nothing was compared
+  double mismatch_percent = 0;     // Resemble's rawMisMatchPercentage against `golden`
+  std::string mismatch_text;       // its misMatchPercentage ("0.42")
+  int max_channel_delta = 0;       // largest |new - golden| over unignored pixels
+  long long differing_pixels = 0;  // unignored pixels with any channel changed
+  std::filesystem::path golden;    // the accepted golden closest to the render
+  std::string message;             // why it failed or could not be judged
+  RgbaImage diff;                  // Resemble's diff image, when asked and not passing
   // The tolerance's metric gates: every gated metric's values, and each gate's outcome (value,
   // limit, margin). Empty for identical images: nothing was measured.
   std::vector<metric::Measurement> measured;

@@ -50,6 +50,7 @@ json to_json(const ImageVerdict& v) {
           {"mismatch_percent", v.mismatch_percent},
           {"mismatch_text", v.mismatch_text},
           {"max_channel_delta", v.max_channel_delta},
+          {"differing_pixels", v.differing_pixels},
           {"golden", printable(v.golden.string())},
           {"message", printable(v.message)}};
 }
@@ -62,6 +63,7 @@ ImageVerdict verdict_from_json(const json& j) {
   v.mismatch_percent = j.at("mismatch_percent");
   v.mismatch_text = j.at("mismatch_text");
   v.max_channel_delta = int_at(j, "max_channel_delta");
+  v.differing_pixels = j.value("differing_pixels", 0LL);
   v.golden = j.at("golden").get<std::string>();
   v.message = j.at("message");
   const json metrics = j.value("metrics", json::object()), gates = j.value("gates", json::array());
@@ -93,38 +95,41 @@ json to_json(const CaseResult& c) {
   json params = json::object();
   for (const auto& [k, v] : c.params)
     params[k] = v.is_string() ? json(printable(v.get<std::string>())) : v;
-  return {{"id", c.id},
-          {"kind", c.kind},
-          {"source", printable(c.source)},
-          {"exit_status", c.exit_status},
-          {"attempts", c.attempts},
-          {"command_stderr", printable_lines(c.command_stderr)},
-          {"labels", labels},
-          {"width", c.width},
-          {"height", c.height},
-          {"params", params},
-          {"tolerance",
-           {{"resemble", c.tolerance.resemble},
-            {"foreground_only", c.tolerance.foreground_only},
-            {"gates", gates},
-            {"regions", regions},
-            {"mode", resemble::mode_name(c.tolerance.mode)},
-            {"max_mismatch_percent", c.tolerance.max_mismatch_percent},
-            {"max_channel_delta", c.tolerance.max_channel_delta},
-            {"ignore", ignore},
-            {"mask", printable(c.tolerance.mask.string())}}},
-          {"status", status_name(c.status)},
-          {"message", printable(c.message)},
-          {"images", images},
-          {"files", c.files},
-          {"times", times},
-          {"figures", c.figures},
-          {"input_hash", c.input_hash},
-          {"judge_hash", c.judge_hash},
-          {"image_hashes", c.image_hashes},
-          {"reused", c.reused},
-          {"seconds", c.seconds},
-          {"bless_command", printable(c.bless_command)}};
+  return {
+      {"id", c.id},
+      {"kind", c.kind},
+      {"source", printable(c.source)},
+      {"exit_status", c.exit_status},
+      {"attempts", c.attempts},
+      {"command_stderr", printable_lines(c.command_stderr)},
+      {"labels", labels},
+      {"width", c.width},
+      {"height", c.height},
+      {"params", params},
+      {"tolerance",
+       {{"resemble", c.tolerance.resemble},
+        {"foreground_only", c.tolerance.foreground_only},
+        {"gates", gates},
+        {"regions", regions},
+        {"mode", resemble::mode_name(c.tolerance.mode)},
+        {"max_mismatch_percent", c.tolerance.max_mismatch_percent},
+        {"max_channel_delta", c.tolerance.max_channel_delta},
+        {"min_channel_delta", c.tolerance.min_channel_delta},
+        {"differing_pixels", {c.tolerance.min_differing_pixels, c.tolerance.max_differing_pixels}},
+        {"ignore", ignore},
+        {"mask", printable(c.tolerance.mask.string())}}},
+      {"status", status_name(c.status)},
+      {"message", printable(c.message)},
+      {"images", images},
+      {"files", c.files},
+      {"times", times},
+      {"figures", c.figures},
+      {"input_hash", c.input_hash},
+      {"judge_hash", c.judge_hash},
+      {"image_hashes", c.image_hashes},
+      {"reused", c.reused},
+      {"seconds", c.seconds},
+      {"bless_command", printable(c.bless_command)}};
 }
 
 CaseResult case_from_json(const json& j) {
@@ -144,6 +149,10 @@ CaseResult case_from_json(const json& j) {
   c.tolerance.mode = resemble::parse_mode(t.at("mode").get<std::string>());
   c.tolerance.max_mismatch_percent = t.at("max_mismatch_percent");
   c.tolerance.max_channel_delta = int_at(t, "max_channel_delta");
+  c.tolerance.min_channel_delta = t.value("min_channel_delta", 0);
+  const json differing = t.value("differing_pixels", json::array({0, -1}));
+  c.tolerance.min_differing_pixels = differing.at(0),
+  c.tolerance.max_differing_pixels = differing.at(1);
   // at(), not []: a box of fewer than four numbers must not be read past its end.
   for (const json& b : t.at("ignore")) {
     c.tolerance.ignore.push_back({b.at(0), b.at(1), b.at(2), b.at(3)});

@@ -44,6 +44,10 @@ struct Tolerance {
   // levels per channel, so without a budget a global shading change of 12 levels passes: 8
   // unless the tolerance names a mismatch percentage alone (then any, as Resemble's gate).
   int max_channel_delta = kDefaultChannelDelta;
+  // Two-sided budgets (verdict::ResembleAllowance): `channel_delta = [min, max]`,
+  // `differing_pixels = [min, max]` or `max_differing_pixels = N`.
+  int min_channel_delta = 0;
+  long long min_differing_pixels = 0, max_differing_pixels = -1;  // -1: any
   std::vector<resemble::Box> ignore;  // left, top, right, bottom, in pixels
   std::filesystem::path
       mask;  // pixels where this PNG is not black (any of R, G, B > 0) are ignored

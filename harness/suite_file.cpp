@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <set>
 #include <stdexcept>
+#include <tuple>
+#include <utility>
 
 #include "common/file_io.hpp"
 #include "common/toml_reader.hpp"
@@ -96,10 +98,22 @@ std::vector<Region> read_regions(const Reader& r, const toml::node& n) {
   return out;
 }
 
+// A two-sided budget, [min, max] with 0 <= min <= max <= hi (Mozilla's fuzzy(min-max) ranges).
+std::pair<long long, long long> read_range(const Reader& r, const toml::node& n,
+                                           std::string_view what, int hi) {
+  const toml::array* a = n.as_array();
+  if (!a || a->size() != 2) r.fail(n.source(), fmt::format("{} must be [min, max]", what));
+  const long long lo = r.integer((*a)[0], what, 0, hi), top = r.integer((*a)[1], what, 0, hi);
+  if (lo > top) r.fail(n.source(), fmt::format("{}: min {} is above max {}", what, lo, top));
+  return {lo, top};
+}
+
 void read_tolerance(const Reader& r, const fs::path& dir, const toml::node& n, Tolerance& t) {
   const toml::table& tbl = r.table(n, "tolerance");
   static constexpr std::string_view kResembleKeys[] = {
-      "mode", "max_mismatch_percent", "max_channel_delta", "ignore", "mask", "foreground_only"};
+      "mode",          "max_mismatch_percent", "max_channel_delta",
+      "channel_delta", "differing_pixels",     "ignore",
+      "mask",          "foreground_only"};
   bool resemble_named = false, metric_named = false;
   for (const auto& [key, value] : tbl) {
     if (std::find(std::begin(kResembleKeys), std::end(kResembleKeys), key.str()) !=
@@ -118,8 +132,9 @@ void read_tolerance(const Reader& r, const fs::path& dir, const toml::node& n, T
       m = &metric::find(key.str());
     } catch (const std::invalid_argument&) {
       r.fail(value.source(), fmt::format("unknown key '{}' (tolerance keys: mode, "
-                                         "max_mismatch_percent, max_channel_delta, ignore, mask, "
-                                         "foreground_only, regions, and the metrics {})",
+                                         "max_mismatch_percent, max_channel_delta, channel_delta, "
+                                         "differing_pixels, ignore, mask, foreground_only, "
+                                         "regions, and the metrics {})",
                                          printable(key.str()), metric::names()));
     }
     std::erase_if(t.gates, [&](const metric::Gates& g) { return g.metric == m; });
@@ -144,8 +159,24 @@ void read_tolerance(const Reader& r, const fs::path& dir, const toml::node& n, T
   }
   if (const toml::node* m = tbl.get("max_channel_delta")) {
     t.max_channel_delta = r.integer(*m, "max_channel_delta", 0, 255);
-  } else if (tbl.get("max_mismatch_percent")) {
+  } else if (tbl.get("max_mismatch_percent") && !tbl.get("channel_delta")) {
     t.max_channel_delta = 255;  // a percentage alone: that many pixels may change by any amount
+  }
+  if (const toml::node* m = tbl.get("channel_delta")) {
+    if (tbl.get("max_channel_delta")) {
+      r.fail(m->source(), "give channel_delta = [min, max] or max_channel_delta, not both");
+    }
+    const auto [lo, hi] = read_range(r, *m, "channel_delta", 255);
+    t.min_channel_delta = static_cast<int>(lo), t.max_channel_delta = static_cast<int>(hi);
+  }
+  if (const toml::node* m = tbl.get("differing_pixels")) {
+    if (m->is_integer()) {
+      t.min_differing_pixels = 0;
+      t.max_differing_pixels = r.integer(*m, "differing_pixels", 0, 1 << 30);
+    } else {
+      std::tie(t.min_differing_pixels, t.max_differing_pixels) =
+          read_range(r, *m, "differing_pixels", 1 << 30);
+    }
   }
   if (const toml::node* m = tbl.get("ignore")) {
     t.ignore.clear();

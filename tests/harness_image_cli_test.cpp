@@ -561,6 +561,54 @@ TEST_F(ImageCases, BlessFromAReportWorksFromAnyDirectory) {
   EXPECT_FALSE(fs::exists(dir_ / "elsewhere" / "exp"));
 }
 
+// Two-sided budgets (Mozilla reftest's fuzzy ranges): a case known to differ says how much,
+// `channel_delta = [min, max]` and `differing_pixels = [min, max]` (or a bare maximum), and
+// fails when the difference outgrows the budget or disappears (then the budget is stale).
+TEST_F(ImageCases, TwoSidedBudgetsFailAboveAndBelow) {
+  const auto draw = [&](int pixels, int delta) {
+    cv::Mat m = flat(8, 6, {100, 100, 100, 255});
+    for (int i = 0; i < pixels; ++i) m.at<cv::Vec4b>(i / 8, i % 8)[0] = std::uint8_t(100 + delta);
+    write_png_rgba8(dir_ / "s" / "x.png", m);
+  };
+  const auto suite = [&](const std::string& tolerance) {
+    std::ofstream(dir_ / "s" / "b.toml", std::ios::trunc)
+        << "[[case]]\nname = \"x\"\nfiles = [\"x.png\"]\n[case.tolerance]\n"
+        << tolerance;
+  };
+  const auto check = [&](const std::string& tolerance, int pixels, int delta) {
+    suite(tolerance);
+    draw(pixels, delta);
+    return aosuite("check s/b.toml");
+  };
+  suite("");
+  draw(0, 0);
+  ASSERT_EQ(aosuite("bless s/b.toml").rc, 0);
+  const std::string delta = "channel_delta = [2, 8]\nmax_mismatch_percent = 100\n";
+  EXPECT_EQ(check(delta, 5, 5).rc, 0);
+  test::Outcome r = check(delta, 5, 12);
+  EXPECT_EQ(r.rc, 1);
+  EXPECT_NE(r.out.find("max channel delta 12 (allowed 8)"), std::string::npos) << r.out;
+  r = check(delta, 0, 0);  // byte-identical: the known difference is gone
+  EXPECT_EQ(r.rc, 1);
+  EXPECT_NE(r.out.find("max channel delta 0 (budget 2..8: the difference it allows for is gone"),
+            std::string::npos)
+      << r.out;
+  const std::string pixels = "differing_pixels = [1, 10]\nmax_mismatch_percent = 100\n";
+  EXPECT_EQ(check(pixels, 5, 30).rc, 0);
+  r = check(pixels, 20, 30);
+  EXPECT_EQ(r.rc, 1);
+  EXPECT_NE(r.out.find("20 differing pixels (budget 1..10)"), std::string::npos) << r.out;
+  EXPECT_EQ(check(pixels, 0, 0).rc, 1);
+  EXPECT_EQ(check("differing_pixels = 3\nmax_mismatch_percent = 100\n", 3, 30).rc, 0);
+  EXPECT_EQ(check("differing_pixels = 3\nmax_mismatch_percent = 100\n", 4, 30).rc, 1);
+  r = check("differing_pixels = [5, 2]\n", 0, 0);
+  EXPECT_EQ(r.rc, 2);
+  EXPECT_NE(r.err.find("differing_pixels: min 5 is above max 2"), std::string::npos) << r.err;
+  r = check("channel_delta = [1, 4]\nmax_channel_delta = 4\n", 0, 0);
+  EXPECT_EQ(r.rc, 2);
+  EXPECT_NE(r.err.find("not both"), std::string::npos) << r.err;
+}
+
 // A noisy command's output is kept as its last 64 KiB, after a line giving its full size.
 TEST_F(ImageCases, ACommandsOutputIsKeptAsItsLast64KiB) {
   std::ofstream(dir_ / "s" / "noisy.toml") << R"(
