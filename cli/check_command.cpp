@@ -166,6 +166,28 @@ std::string skipped_text(const std::vector<hs::Skipped>& skipped) {
   return hs::printable(out);
 }
 
+// Budgets that passing images use under a tenth of (ImageVerdict::stale): one line, the first
+// few named, so tolerances tighten over time instead of hiding the next change.
+void print_stale(const hs::RunResults& run) {
+  std::vector<std::string> named;
+  std::size_t images = 0;
+  for (const hs::CaseResult& c : run.cases) {
+    for (const hs::ImageVerdict& v : c.images) {
+      if (v.stale.empty()) continue;
+      ++images;
+      if (named.size() < 3)
+        named.push_back(fmt::format("{} {}: {}", c.id, v.image, v.stale.front()));
+    }
+  }
+  if (!images) return;
+  std::string list;
+  for (const std::string& n : named) list += (list.empty() ? "" : "; ") + n;
+  fmt::print(
+      "stale budgets: {} passing image{} use under a tenth of a limit ({}{}; results.json "
+      "\"stale\" lists them)\n",
+      images, images == 1 ? "" : "s", hs::printable(list), images > named.size() ? "; ..." : "");
+}
+
 int finish(const hs::RunResults& run, const fs::path& report_dir, const std::string& junit,
            const Output& out) {
   hs::write_html_report(run, report_dir, {.single_file = out.single_file});
@@ -219,6 +241,7 @@ int finish(const hs::RunResults& run, const fs::path& report_dir, const std::str
                run.cases.size(), run.cases.size() == 1 ? "" : "s", n.pass, n.fail, n.fresh, n.error,
                flaky, hs::printable(report));
   }
+  print_stale(run);
   for (const hs::CaseResult& c : run.cases) {
     if (c.bless_command.empty()) continue;
     fmt::print("  to accept {}: {}\n", c.id, hs::printable(c.bless_command));

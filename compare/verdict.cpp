@@ -61,4 +61,30 @@ Verdict decide(const ResembleFigures* resemble, const ResembleAllowance& allowed
   return v;
 }
 
+std::vector<std::string> stale_budgets(const ResembleFigures* resemble,
+                                       const ResembleAllowance& allowed,
+                                       std::span<const metric::Outcome> gates) {
+  std::vector<std::string> out;
+  const auto unused = [](double used, double limit) { return limit > 0 && used * 10 < limit; };
+  if (resemble && resemble->same_size) {
+    if (unused(resemble->mismatch_percent, allowed.max_mismatch_percent)) {
+      out.push_back(fmt::format("max_mismatch_percent {} (used {})", allowed.max_mismatch_percent,
+                                resemble->mismatch_text));
+    }
+    if (resemble->differing_pixels >= 0 &&
+        unused(double(resemble->differing_pixels), double(allowed.max_differing_pixels))) {
+      out.push_back(fmt::format("differing_pixels max {} (used {})", allowed.max_differing_pixels,
+                                resemble->differing_pixels));
+    }
+  }
+  for (const metric::Outcome& o : gates) {
+    if (o.is_max && o.pass && unused(o.value, o.limit)) {
+      out.push_back(fmt::format("{}{}.max_{} {:g} (used {:.6g})",
+                                o.region.empty() ? "" : o.region + ": ", o.metric, o.stat, o.limit,
+                                o.value));
+    }
+  }
+  return out;
+}
+
 }  // namespace aosuite::verdict

@@ -44,4 +44,12 @@ struct Verdict {
 Verdict decide(const ResembleFigures* resemble, const ResembleAllowance& allowed,
                std::span<const metric::Outcome> gates);
 
+// The upper limits a measured difference uses less than a tenth of: the mismatch percentage,
+// the differing pixels and metric `max` gates ("max_mismatch_percent 5 (used 0.12)"). Such a
+// budget would let a change ten times this one pass: a tolerance to tighten (the channel
+// delta's default and `min` gates are not listed).
+std::vector<std::string> stale_budgets(const ResembleFigures* resemble,
+                                       const ResembleAllowance& allowed,
+                                       std::span<const metric::Outcome> gates);
+
 }  // namespace aosuite::verdict

@@ -295,6 +295,10 @@ ImageVerdict against(std::string_view image, std::span<const unsigned char> rend
         verdict::decide(!is_float && t.resemble ? &found : nullptr, allowance(t), v.outcomes);
     v.message = d.message();
     v.status = d.pass ? Status::kPass : Status::kFail;
+    if (d.pass) {
+      v.stale = verdict::stale_budgets(!is_float && t.resemble ? &found : nullptr, allowance(t),
+                                       v.outcomes);
+    }
   } catch (const std::exception& e) {
     v.status = Status::kError;
     v.message = e.what();

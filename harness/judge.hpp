@@ -30,7 +30,10 @@ struct ImageVerdict {
   long long differing_pixels = 0;  // unignored pixels with any channel changed
   std::filesystem::path golden;    // the accepted golden closest to the render
   std::string message;             // why it failed or could not be judged
-  RgbaImage diff;                  // Resemble's diff image, when asked and not passing
+  // A passing, measured (not byte-identical) image's budgets it uses under a tenth of
+  // (verdict::stale_budgets): tolerances to tighten.
+  std::vector<std::string> stale;
+  RgbaImage diff;  // Resemble's diff image, when asked and not passing
   // The tolerance's metric gates: every gated metric's values, and each gate's outcome (value,
   // limit, margin). Empty for identical images: nothing was measured.
   std::vector<metric::Measurement> measured;

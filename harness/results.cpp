@@ -51,6 +51,7 @@ json to_json(const ImageVerdict& v) {
           {"mismatch_text", v.mismatch_text},
           {"max_channel_delta", v.max_channel_delta},
           {"differing_pixels", v.differing_pixels},
+          {"stale", v.stale},
           {"golden", printable(v.golden.string())},
           {"message", printable(v.message)}};
 }
@@ -64,6 +65,7 @@ ImageVerdict verdict_from_json(const json& j) {
   v.mismatch_text = j.at("mismatch_text");
   v.max_channel_delta = int_at(j, "max_channel_delta");
   v.differing_pixels = j.value("differing_pixels", 0LL);
+  v.stale = j.value("stale", std::vector<std::string>());
   v.golden = j.at("golden").get<std::string>();
   v.message = j.at("message");
   const json metrics = j.value("metrics", json::object()), gates = j.value("gates", json::array());

@@ -609,6 +609,42 @@ TEST_F(ImageCases, TwoSidedBudgetsFailAboveAndBelow) {
   EXPECT_NE(r.err.find("not both"), std::string::npos) << r.err;
 }
 
+// A budget that a passing image uses under a tenth of is named as stale, on one line and in
+// results.json, so tolerances tighten over time; a budget in use is not, nor is one whose
+// image is byte-identical (nothing was measured).
+TEST_F(ImageCases, BudgetsAPassUsesUnderATenthOfAreStale) {
+  cv::Mat base = flat(8, 6, {100, 100, 100, 255});
+  write_png_rgba8(dir_ / "s" / "x.png", base);
+  const auto check = [&](const std::string& tolerance) {
+    std::ofstream(dir_ / "s" / "b.toml", std::ios::trunc)
+        << "[[case]]\nname = \"x\"\nfiles = [\"x.png\"]\n[case.tolerance]\n"
+        << tolerance;
+    return aosuite("check s/b.toml");
+  };
+  ASSERT_EQ(check("").rc, 1);  // NEW
+  ASSERT_EQ(aosuite("bless s/b.toml").rc, 0);
+  EXPECT_EQ(check("max_mismatch_percent = 50\n").out.find("stale"), std::string::npos);
+  base.at<cv::Vec4b>(0, 0)[0] = 200;  // 1 of 48 pixels: 2.08 %
+  write_png_rgba8(dir_ / "s" / "x.png", base);
+  test::Outcome r = check("max_mismatch_percent = 50\nrmse = { max = 1 }\n");
+  EXPECT_EQ(r.rc, 0) << r.out;
+  EXPECT_NE(r.out.find("stale budgets: 1 passing image use under a tenth of a limit (x x: "
+                       "max_mismatch_percent 50 (used 2.08)"),
+            std::string::npos)
+      << r.out;
+  const auto stale = nlohmann::json::parse(read_text(dir_ / "reports" / "b" / "results.json"))
+                         .at("cases")
+                         .at(0)
+                         .at("images")
+                         .at(0)
+                         .at("stale");
+  ASSERT_EQ(stale.size(), 2u) << stale;
+  EXPECT_TRUE(stale[1].get<std::string>().starts_with("rmse.max_value 1 (used ")) << stale;
+  r = check("max_mismatch_percent = 10\n");  // 2.08 is over a tenth of 10: in use
+  EXPECT_EQ(r.rc, 0) << r.out;
+  EXPECT_EQ(r.out.find("stale"), std::string::npos) << r.out;
+}
+
 // A noisy command's output is kept as its last 64 KiB, after a line giving its full size.
 TEST_F(ImageCases, ACommandsOutputIsKeptAsItsLast64KiB) {
   std::ofstream(dir_ / "s" / "noisy.toml") << R"(
