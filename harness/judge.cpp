@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <stdexcept>
 
+#include "common/content_hash.hpp"
 #include "image/image_file.hpp"
 #include "image/image_io.hpp"
 #include "image/png_layout.hpp"
@@ -53,6 +54,10 @@ Status parse_status(std::string_view name) {
     if (status_name(s) == name) return s;
   }
   throw std::invalid_argument("unknown status '" + std::string(name) + "'");
+}
+
+std::string golden_hash(std::span<const unsigned char> bytes) {
+  return ContentHash().add(bytes).hex();
 }
 
 namespace {
@@ -239,8 +244,9 @@ ImageVerdict against(std::string_view image, std::span<const unsigned char> rend
   v.image = std::string(image), v.golden = golden_file;
   try {
     const std::vector<unsigned char> bytes = read_file(golden_file, kMaxFileBytes);
+    v.golden_hash = golden_hash(bytes);
     if (std::equal(bytes.begin(), bytes.end(), render_bytes.begin(), render_bytes.end())) {
-      v.status = Status::kPass, v.identical = true, v.mismatch_text = "0.00";
+      v.status = Status::kPass, v.identical = true, v.mismatch_text = "0.00", v.comparable = true;
       return v;
     }
     const bool is_float = render.empty();
@@ -285,6 +291,7 @@ ImageVerdict against(std::string_view image, std::span<const unsigned char> rend
     const std::string failed = failed_gates(v);
     if (!failed.empty()) v.message += (v.message.empty() ? "" : "; ") + failed;
     v.status = pass && failed.empty() ? Status::kPass : Status::kFail;
+    v.comparable = true;
   } catch (const std::exception& e) {
     v.status = Status::kError;
     v.message = e.what();

@@ -51,6 +51,8 @@ json to_json(const ImageVerdict& v) {
           {"mismatch_text", v.mismatch_text},
           {"max_channel_delta", v.max_channel_delta},
           {"golden", printable(v.golden.string())},
+          {"golden_hash", v.golden_hash},
+          {"comparable", v.comparable},
           {"message", printable(v.message)}};
 }
 
@@ -63,6 +65,9 @@ ImageVerdict verdict_from_json(const json& j) {
   v.mismatch_text = j.at("mismatch_text");
   v.max_channel_delta = int_at(j, "max_channel_delta");
   v.golden = j.at("golden").get<std::string>();
+  // Absent in older results: `tolerances suggest` then asks for a new run.
+  v.golden_hash = j.value("golden_hash", std::string());
+  v.comparable = j.value("comparable", false);
   v.message = j.at("message");
   const json metrics = j.value("metrics", json::object()), gates = j.value("gates", json::array());
   for (const auto& [name, m] : metrics.items())
