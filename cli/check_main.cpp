@@ -1,7 +1,7 @@
-// Entry point of libaosuite_check.so: `check`, `bless` and `report`, the harness on the command
-// line. It holds no renderer: a suite of files and commands (and folder mode) maps no GL, Embree,
-// assimp or OpenCV. Only a suite or report with scene cases loads libaosuite_gl.so, which
-// registers the AO bench's case kind (ao/scene_cases.hpp).
+// Entry point of libaosuite_check.so: `check`, `bless`, `report` and `tolerances`, the harness on
+// the command line. It holds no renderer: a suite of files and commands (and folder mode) maps no
+// GL, Embree, assimp or OpenCV. Only a suite or report with scene cases loads libaosuite_gl.so,
+// which registers the AO bench's case kind (ao/scene_cases.hpp).
 #include <dlfcn.h>
 
 #include <cstdlib>
@@ -67,6 +67,7 @@ extern "C" int aosuite_check_main(int argc, char** argv) {
   aosuite::cli::add_check_command(app, rc);
   aosuite::cli::add_bless_command(app, rc);
   aosuite::cli::add_report_command(app, rc);
+  aosuite::cli::add_tolerances_command(app, rc);
   add_gl_options(app);
   return aosuite::cli::run_library_app(app, argc, argv, rc);
 }

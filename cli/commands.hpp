@@ -35,6 +35,7 @@ void add_scenes_command(CLI::App& app, int& rc);      // in libaosuite_gl.so
 void add_check_command(CLI::App& app, int& rc);       // in libaosuite_check.so
 void add_bless_command(CLI::App& app, int& rc);       // in libaosuite_check.so
 void add_report_command(CLI::App& app, int& rc);      // in libaosuite_check.so
+void add_tolerances_command(CLI::App& app, int& rc);  // in libaosuite_check.so
 void add_viewpoints_command(CLI::App& app, int& rc);  // in libaosuite_gl.so
 void add_pmi_study_command(CLI::App& app, int& rc);   // in libaosuite_gl.so
 void add_error_command(CLI::App& app, int& rc);       // in libaosuite_gl.so

@@ -32,6 +32,10 @@ constexpr std::array kLibraryCommands{
     LibraryCommand{"bless", "Accept a suite's or a folder's current images as its goldens",
                    kHarness},
     LibraryCommand{"report", "Merge shard reports (report merge --out DIR SHARD...)", kHarness},
+    LibraryCommand{"tolerances",
+                   "Suggest each case's tightest tolerance from repeated runs (tolerances suggest "
+                   "SUITE --report DIR...)",
+                   kHarness},
     LibraryCommand{"render", "Render a scene view with one AO technique", kBench},
     LibraryCommand{"scenes", "List built-in scenes and their views, or check scene files", kBench},
     LibraryCommand{"viewpoints",

@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <stdexcept>
 
+#include "common/content_hash.hpp"
 #include "compare/verdict.hpp"
 #include "image/image_file.hpp"
 #include "image/image_io.hpp"
@@ -54,6 +55,10 @@ Status parse_status(std::string_view name) {
     if (status_name(s) == name) return s;
   }
   throw std::invalid_argument("unknown status '" + std::string(name) + "'");
+}
+
+std::string golden_hash(std::span<const unsigned char> bytes) {
+  return ContentHash().add(bytes).hex();
 }
 
 namespace {
@@ -244,9 +249,10 @@ ImageVerdict against(std::string_view image, std::span<const unsigned char> rend
   v.image = std::string(image), v.golden = golden_file;
   try {
     const std::vector<unsigned char> bytes = read_file(golden_file, kMaxFileBytes);
+    v.golden_hash = golden_hash(bytes);
     if (std::equal(bytes.begin(), bytes.end(), render_bytes.begin(), render_bytes.end())) {
       // Nothing to measure, but a two-sided budget's minimum still judges "no difference".
-      v.identical = true, v.mismatch_text = "0.00";
+      v.identical = true, v.mismatch_text = "0.00", v.comparable = true;
       const verdict::ResembleFigures none = figures(v);
       const verdict::Verdict d = verdict::decide(t.resemble ? &none : nullptr, allowance(t), {});
       v.status = d.pass ? Status::kPass : Status::kFail, v.message = d.message();
@@ -295,6 +301,7 @@ ImageVerdict against(std::string_view image, std::span<const unsigned char> rend
         verdict::decide(!is_float && t.resemble ? &found : nullptr, allowance(t), v.outcomes);
     v.message = d.message();
     v.status = d.pass ? Status::kPass : Status::kFail;
+    v.comparable = true;
     if (d.pass) {
       v.stale = verdict::stale_budgets(!is_float && t.resemble ? &found : nullptr, allowance(t),
                                        v.outcomes);

@@ -39,7 +39,16 @@ struct ImageVerdict {
   std::vector<metric::Measurement> measured;
   std::vector<metric::Outcome> outcomes;
   RgbaImage heatmap;  // FLIP's error map, when FLIP is gated, asked for and not passing
+  // The golden's content hash, so what was measured against it is not mistaken for numbers
+  // against a golden blessed since (`tolerances suggest`); empty when it could not be read.
+  std::string golden_hash;
+  // The render was measured against the golden: identical, or Resemble's numbers and every gate's
+  // value are the render's. False where no tolerance could make it pass (another size or kind).
+  bool comparable = false;
 };
+
+// A golden's bytes as ImageVerdict::golden_hash records them.
+std::string golden_hash(std::span<const unsigned char> bytes);
 
 // Judges a render (its file's bytes, and for PNGs their decoded RGBA; `render` is empty for
 // float images) against `goldens` (accepted variants; the case passes if any does) under

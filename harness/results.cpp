@@ -53,6 +53,8 @@ json to_json(const ImageVerdict& v) {
           {"differing_pixels", v.differing_pixels},
           {"stale", v.stale},
           {"golden", printable(v.golden.string())},
+          {"golden_hash", v.golden_hash},
+          {"comparable", v.comparable},
           {"message", printable(v.message)}};
 }
 
@@ -67,6 +69,9 @@ ImageVerdict verdict_from_json(const json& j) {
   v.differing_pixels = j.value("differing_pixels", 0LL);
   v.stale = j.value("stale", std::vector<std::string>());
   v.golden = j.at("golden").get<std::string>();
+  // Absent in older results: `tolerances suggest` then asks for a new run.
+  v.golden_hash = j.value("golden_hash", std::string());
+  v.comparable = j.value("comparable", false);
   v.message = j.at("message");
   const json metrics = j.value("metrics", json::object()), gates = j.value("gates", json::array());
   for (const auto& [name, m] : metrics.items())

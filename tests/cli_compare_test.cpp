@@ -222,7 +222,7 @@ TEST_F(CliCompare, UnknownCommandIsNamed) {
     const Outcome r = test::run_shell(std::string(AOSUITE_BIN) + " " + args, dir_.path());
     EXPECT_EQ(r.rc, 2) << args;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << ": " << r.err;
-    EXPECT_NE(r.err.find("compare, check, bless, report, render"), std::string::npos)
+    EXPECT_NE(r.err.find("compare, check, bless, report, tolerances, render"), std::string::npos)
         << args << ": " << r.err;
     if (*args) {
       EXPECT_NE(r.err.find("unknown command 'foo'"), std::string::npos) << r.err;

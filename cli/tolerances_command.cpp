@@ -1,0 +1,102 @@
+// `aosuite tolerances suggest SUITE --report DIR...`: each case's tightest tolerance that passes
+// every given run, written beside the goldens for review (harness/tolerance_suggest.hpp).
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <stdexcept>
+
+#include "cli/commands.hpp"
+#include "common/file_io.hpp"
+#include "harness/escape.hpp"
+#include "harness/suggest_toml.hpp"
+#include "harness/suite_file.hpp"
+
+namespace aosuite::cli {
+namespace {
+
+namespace fs = std::filesystem;
+namespace hs = aosuite::harness;
+
+struct SuggestArgs {
+  std::string suite, goldens, out;
+  std::vector<std::string> reports;
+  double margin = 0;
+};
+
+// "mismatch 0.5 -> 0.06511 %, max Δ 8 -> 3, flip max_mean 0.02 -> 0.01234": each limit the
+// suggestion sets, as the suite has it and as suggested.
+std::string limits_text(const hs::Suggestion& s) {
+  std::vector<std::string> parts;
+  if (s.proposed.resemble) {
+    parts.push_back(fmt::format("mismatch {} -> {} %", s.current.max_mismatch_percent,
+                                s.proposed.max_mismatch_percent));
+    parts.push_back(
+        fmt::format("max Δ {} -> {}", s.current.max_channel_delta, s.proposed.max_channel_delta));
+  }
+  std::vector<double> now;
+  hs::for_each_limit(s.current, [&](auto, auto&, auto& l) { now.push_back(l.limit); });
+  std::size_t i = 0;
+  hs::for_each_limit(s.proposed, [&](std::string_view region, auto& g, auto& l) {
+    parts.push_back(fmt::format("{}{} {}_{} {} -> {}",
+                                region.empty() ? "" : std::string(region) + ": ", g.metric->name,
+                                l.is_max ? "max" : "min", l.stat, now[i++], l.limit));
+  });
+  return fmt::format("{}", fmt::join(parts, ", "));
+}
+
+int run_suggest(const SuggestArgs& a) {
+  hs::Suite suite = hs::load_suite(a.suite);
+  if (!a.goldens.empty()) suite.goldens = a.goldens, suite.goldens_given = true;
+  const std::vector<fs::path> reports(a.reports.begin(), a.reports.end());
+  const hs::SuggestOptions options{.margin_percent = a.margin};
+  const std::vector<hs::Suggestion> all = hs::suggest(suite, reports, options);
+  std::size_t width = 4, suggested = 0;
+  for (const hs::Suggestion& s : all) width = std::max(width, s.id.size());
+  fmt::print("{:<{}}  runs  limits (now -> suggested)\n", "case", width);
+  for (const hs::Suggestion& s : all) {
+    suggested += s.reason.empty();
+    fmt::print("{:<{}}  {:>4}  {}\n", s.id, width, s.runs.size(),
+               s.reason.empty() ? limits_text(s) : "not suggested: " + s.reason);
+  }
+  if (suggested == 0) {
+    throw std::runtime_error(fmt::format(
+        "nothing to suggest: no case of {} has two usable runs in the {} report{} given (reasons "
+        "above); nothing written",
+        a.suite, reports.size(), reports.size() == 1 ? "" : "s"));
+  }
+  const fs::path out =
+      a.out.empty() ? suite.goldens / "tolerances.suggested.toml" : fs::path(a.out);
+  write_text(out, hs::suggestions_toml(suite, all, reports, options));
+  fmt::print(
+      "suggested tolerances for {} of {} cases from {} runs: {} (review it; the suite is "
+      "unchanged)\n",
+      suggested, all.size(), reports.size(), hs::printable(out.string()));
+  return suggested == all.size() ? kExitSame : kExitDifferent;
+}
+
+}  // namespace
+
+void add_tolerances_command(CLI::App& app, int& rc) {
+  CLI::App* cmd = app.add_subcommand("tolerances", "Work with a suite's tolerances");
+  cmd->require_subcommand(1);
+  CLI::App* suggest = cmd->add_subcommand(
+      "suggest",
+      "Propose each case's tightest tolerance that passes every given run of the suite (reports "
+      "of check), written beside the goldens for review. Exit status: 0 every case suggested, "
+      "1 some not (listed, with why), 2 none or bad input (nothing written).");
+  auto a = std::make_shared<SuggestArgs>();
+  suggest->add_option("suite", a->suite, "suite file the reports are runs of")->required();
+  suggest->add_option("--report", a->reports, "report folder of a check run (repeat, 2 or more)")
+      ->required();
+  suggest->add_option("--goldens", a->goldens, "goldens folder, if check was given --goldens");
+  suggest->add_option("--out", a->out,
+                      "file to write (default: <goldens>/tolerances.suggested.toml)");
+  suggest
+      ->add_option("--margin", a->margin,
+                   "headroom in % of each measured value (default 0: the tightest)")
+      ->check(CLI::Range(0.0, 1000.0));
+  guarded(suggest, rc, "tolerances suggest", [a] { return run_suggest(*a); });
+}
+
+}  // namespace aosuite::cli

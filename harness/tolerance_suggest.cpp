@@ -1,0 +1,243 @@
+#include "harness/tolerance_suggest.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <stdexcept>
+
+#include "common/file_io.hpp"
+#include "harness/escape.hpp"
+#include "harness/results.hpp"
+
+namespace aosuite::harness {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Run {
+  fs::path dir;
+  RunResults results;
+  std::string name() const { return printable(dir.string()); }
+};
+
+// Each report, checked to be a run of `suite` against the goldens it has.
+std::vector<Run> read_runs(const Suite& suite, const std::vector<fs::path>& reports) {
+  std::vector<Run> runs;
+  const std::string goldens = fs::absolute(suite.goldens).lexically_normal().string();
+  for (const fs::path& dir : reports) {
+    const std::string file = printable((dir / "results.json").string());
+    Run run{dir, read_results(dir)};
+    const RunResults& r = run.results;
+    for (const Run& other : runs) {
+      std::error_code ec;
+      if (fs::equivalent(other.dir, dir, ec)) throw std::runtime_error(file + ": given twice");
+    }
+    if (!r.expected_folder.empty()) {
+      throw std::runtime_error(file + ": a folder-mode run, not a run of suite '" + suite.name +
+                               "'");
+    }
+    if (r.suite != suite.name) {
+      throw std::runtime_error(
+          fmt::format("{}: a run of suite '{}', not '{}'", file, r.suite, suite.name));
+    }
+    // Older results do not say; their goldens are checked image by image below.
+    if (!r.goldens.empty() && r.goldens != goldens) {
+      throw std::runtime_error(
+          fmt::format("{}: judged the goldens in {}, not the suite's {} (--goldens names others)",
+                      file, printable(r.goldens), printable(goldens)));
+    }
+    runs.push_back(std::move(run));
+  }
+  return runs;
+}
+
+// The file a run judged against, where the suite's goldens folder holds it now: its path below
+// the case's folder (the image, or platform/image) under `goldens`.
+fs::path golden_now(const fs::path& goldens, const std::string& id, const fs::path& judged) {
+  fs::path tail = judged.filename(), dir = judged.parent_path();
+  if (dir.filename() != id) tail = dir.filename() / tail;
+  return goldens / id / tail;
+}
+
+// The judged golden still holds the bytes the run measured against.
+bool golden_unchanged(const fs::path& file, const std::string& hash) {
+  try {
+    return golden_hash(read_file(file, kMaxFileBytes)) == hash;
+  } catch (const std::exception&) {
+    return false;
+  }
+}
+
+// What a run measured of one gated stat: its gate's outcome, else (for the whole image) the
+// metric's own value; nothing when its tolerance then neither gated nor measured it.
+std::optional<double> value_of(const ImageVerdict& v, std::string_view region,
+                               const metric::Gates& g, const metric::Limit& l) {
+  for (const metric::Outcome& o : v.outcomes) {
+    if (o.region == region && o.metric == g.metric->name && o.stat == l.stat) return o.value;
+  }
+  for (const metric::Measurement& m : v.measured) {
+    if (!region.empty() || m.metric != g.metric->name) continue;
+    for (const metric::Value& value : m.values)
+      if (value.key == l.stat) return value.value;
+  }
+  return std::nullopt;
+}
+
+// The extremes over every run: what the limits must let through.
+struct Observed {
+  bool resemble = false;  // some image had Resemble's numbers
+  double mismatch = 0;
+  int delta = 0;
+  std::vector<std::optional<double>> limits;  // per limit, in for_each_limit's order
+};
+
+bool same_judging(const Tolerance& a, const Tolerance& b) {
+  const auto box = [](const resemble::Box& x) {
+    return std::array{x.left, x.top, x.right, x.bottom};
+  };
+  return a.mode == b.mode && a.foreground_only == b.foreground_only &&
+         a.mask.empty() == b.mask.empty() && std::ranges::equal(a.ignore, b.ignore, {}, box, box);
+}
+
+// Adds an image's value of each gated stat to the extremes; returns the first it lacks
+// ("edges: flip mean"), or "".
+std::string observe_gates(const Tolerance& t, const ImageVerdict& v, Observed& seen) {
+  std::size_t i = 0;
+  std::string missing;
+  for_each_limit(t, [&](std::string_view region, const metric::Gates& g, const metric::Limit& l) {
+    std::optional<double>& extreme = seen.limits[i++];
+    const std::optional<double> value = value_of(v, region, g, l);
+    if (!value) {
+      if (missing.empty())
+        missing = fmt::format("{}{} {}", region.empty() ? "" : std::string(region) + ": ",
+                              g.metric->name, l.stat);
+    } else {
+      extreme = !extreme   ? *value
+                : l.is_max ? std::max(*extreme, *value)
+                           : std::min(*extreme, *value);
+    }
+  });
+  return missing;
+}
+
+// Adds one run's numbers for case `c`; returns why they cannot be used, or "".
+std::string observe(const Suite& suite, const Case& c, const Run& run, const CaseResult& r,
+                    Observed& seen) {
+  const std::string at = run.name() + ": ";
+  if (r.status == Status::kNew || r.status == Status::kError) {
+    return at + std::string(status_name(r.status)) + " (" + printable(r.message) + ")";
+  }
+  if (r.status == Status::kFlaky) {
+    return at + "FLAKY, and the failing attempt's numbers are not kept (check without --retries)";
+  }
+  if (!same_judging(r.tolerance, c.tolerance)) {
+    return at +
+           "judged under another mode, mask, ignored boxes or foreground than the suite's "
+           "now (check again)";
+  }
+  for (const std::string& image : c.images) {
+    const auto v = std::ranges::find(r.images, image, &ImageVerdict::image);
+    if (v == r.images.end()) return at + "has no image '" + image + "' (check again)";
+    if (v->golden_hash.empty()) return at + "made by an older aosuite (check again)";
+    if (!v->comparable)
+      return at + image + ": " + printable(v->message) + " (no tolerance passes it)";
+    const fs::path now = golden_now(suite.goldens, c.id, v->golden);
+    if (!golden_unchanged(now, v->golden_hash)) {
+      return at + image + ": the golden " + printable(now.string()) +
+             " changed since (check again)";
+    }
+    for (const metric::Outcome& o : v->outcomes) {
+      if (o.stat == "nonfinite" && !o.pass) return at + image + ": " + o.text();
+    }
+    if (!v->mismatch_text.empty()) {
+      seen.resemble = true;
+      seen.mismatch = std::max(seen.mismatch, v->mismatch_percent);
+      seen.delta = std::max(seen.delta, v->max_channel_delta);
+    }
+    if (v->identical) continue;  // passes any limit: nothing measured
+    if (const std::string lack = observe_gates(c.tolerance, *v, seen); !lack.empty())
+      return at + image + ": measured no " + lack + " (check again)";
+  }
+  return "";
+}
+
+// Sets `s.proposed` from the extremes; `s.reason` when a limit cannot be met.
+void propose(const Observed& seen, const SuggestOptions& o, Suggestion& s) {
+  const double up = 1 + o.margin_percent / 100;
+  s.proposed = s.current;
+  s.proposed.resemble = s.current.resemble && seen.resemble;
+  s.proposed.max_mismatch_percent = std::min(100.0, round_outward(seen.mismatch * up, true));
+  s.proposed.max_channel_delta = std::min(255, int(std::ceil(seen.delta * up)));
+  std::size_t i = 0;
+  for_each_limit(
+      s.proposed, [&](std::string_view region, const metric::Gates& g, metric::Limit& l) {
+        const std::optional<double>& extreme = seen.limits[i++];
+        const std::string name =
+            fmt::format("{}{} {}_{}", region.empty() ? "" : std::string(region) + ": ",
+                        g.metric->name, l.is_max ? "max" : "min", l.stat);
+        if (!extreme) {
+          s.kept.push_back(name + ": no run measured it (identical images); kept");
+        } else if (std::isinf(*extreme) && !l.is_max) {
+          s.kept.push_back(name +
+                           ": +inf in every run (identical pixels), which any limit passes; kept");
+        } else if (std::isinf(*extreme)) {
+          s.reason = name + ": +inf in a run (identical pixels), which no max_ limit passes";
+        } else {
+          const double headroom = std::abs(*extreme) * o.margin_percent / 100;
+          l.limit = round_outward(l.is_max ? *extreme + headroom : *extreme - headroom, l.is_max);
+        }
+      });
+}
+
+Suggestion suggest_case(const Suite& suite, const Case& c, const std::vector<Run>& runs,
+                        const SuggestOptions& o) {
+  Suggestion s;
+  s.id = c.id, s.current = c.tolerance;
+  Observed seen;
+  for_each_limit(c.tolerance, [&](auto, auto&, auto&) { seen.limits.emplace_back(); });
+  for (const Run& run : runs) {
+    const auto r = std::ranges::find(run.results.cases, c.id, &CaseResult::id);
+    if (r == run.results.cases.end()) continue;
+    s.runs.push_back(run.name());
+    if (s.reason.empty()) s.reason = observe(suite, c, run, *r, seen);
+  }
+  if (s.runs.size() < 2) {
+    s.reason = s.runs.empty()
+                   ? "in no report"
+                   : "seen in one run (" + s.runs.front() + "); a suggestion needs two or more";
+  }
+  if (s.reason.empty()) propose(seen, o, s);
+  return s;
+}
+
+}  // namespace
+
+double round_outward(double v, bool up) {
+  if (v == 0 || !std::isfinite(v)) return v;
+  const int exponent = 3 - int(std::floor(std::log10(std::abs(v))));
+  // Powers of ten up to 1e22 are exact, so n / 10^k is the double nearest the decimal.
+  const auto at = [&](double n) {
+    return exponent >= 0 ? n / std::pow(10.0, exponent) : n * std::pow(10.0, -exponent);
+  };
+  const double scaled =
+      exponent >= 0 ? v * std::pow(10.0, exponent) : v / std::pow(10.0, -exponent);
+  double n = up ? std::ceil(scaled) : std::floor(scaled);
+  // `scaled` is inexact: step to the multiple nearest `v` on its outer side.
+  const double step = up ? 1 : -1;
+  while (up ? at(n - step) >= v : at(n - step) <= v) n -= step;
+  while (up ? at(n) < v : at(n) > v) n += step;
+  return at(n);
+}
+
+std::vector<Suggestion> suggest(const Suite& suite, const std::vector<fs::path>& reports,
+                                const SuggestOptions& options) {
+  const std::vector<Run> runs = read_runs(suite, reports);
+  std::vector<Suggestion> out;
+  for (const Case& c : suite.cases) out.push_back(suggest_case(suite, c, runs, options));
+  return out;
+}
+
+}  // namespace aosuite::harness

@@ -1,0 +1,57 @@
+// `aosuite tolerances suggest`: from several runs of a suite (the reports `check` wrote, on
+// other machines or retries), the tightest tolerance per case that passes every one of them, as
+// Skia Gold's inexact-matching parameter search proposes one. A proposal to review: the suite
+// and its goldens are never touched.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "harness/suite.hpp"
+
+namespace aosuite::harness {
+
+struct SuggestOptions {
+  // Relative headroom: each max limit is the largest value times (1 + margin / 100), each min
+  // limit the smallest less as much, before rounding outward.
+  double margin_percent = 0;
+};
+
+struct Suggestion {
+  std::string id;
+  std::vector<std::string> runs;  // the report folders it is based on
+  std::string reason;             // why nothing is suggested; empty when something is
+  Tolerance current;              // the suite's tolerance now
+  // `current` with its limits set from what the runs measured. `resemble` is off when no image
+  // had Resemble's numbers (float images): then its keys are not suggested.
+  Tolerance proposed;
+  // Limits left as the suite has them, and why ("flip max_mean: no run measured it ...").
+  std::vector<std::string> kept;
+};
+
+// One suggestion per case of the suite, in its order. A suggestion needs two runs or more, each
+// of which measured every image of the case against the golden the suite has now, under the
+// same mode, mask, ignored boxes and foreground, with every gated stat measured; else `reason`
+// says which run lacks what. Throws std::runtime_error, naming the results.json, for a report
+// that cannot be read, is of another suite or judged another goldens folder, or is given twice.
+std::vector<Suggestion> suggest(const Suite& suite,
+                                const std::vector<std::filesystem::path>& reports,
+                                const SuggestOptions& options);
+
+// Calls f(region, gates, limit) for each limit of `t`'s gates (region "") and of its regions'.
+template <typename T, typename F>
+void for_each_limit(T& t, F f) {
+  for (auto& g : t.gates)
+    for (auto& l : g.limits) f(std::string_view(), g, l);
+  for (auto& r : t.regions)
+    for (auto& g : r.gates)
+      for (auto& l : g.limits) f(std::string_view(r.name), g, l);
+}
+
+// `v` rounded to 4 significant digits away from the measured side (up for a max limit, down for
+// a min one), so the limit never cuts off what was measured and stays readable.
+double round_outward(double v, bool up);
+
+}  // namespace aosuite::harness

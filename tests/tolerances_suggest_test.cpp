@@ -1,0 +1,194 @@
+// `aosuite tolerances suggest`, end to end: two check runs whose images differ slightly from
+// the golden and from each other, the suggestion's exact numbers, and that those limits pass
+// both runs' images while tighter ones fail; bad input is one line, exit 2, nothing written.
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "compare/opencv.hpp"
+#include "harness/tolerance_suggest.hpp"
+#include "png_fixture.hpp"
+#include "process.hpp"
+
+namespace aosuite {
+namespace {
+
+namespace fs = std::filesystem;
+
+// An 8x6 grey chart with `changed` pixels of the first row brightened in red by the deltas.
+cv::Mat chart(std::initializer_list<int> deltas) {
+  cv::Mat m(6, 8, CV_8UC4, cv::Scalar(100, 100, 100, 255));
+  int x = 0;
+  for (int d : deltas) m.at<cv::Vec4b>(0, x++)[0] = static_cast<unsigned char>(100 + d);
+  return m;
+}
+
+class TolerancesSuggest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    fs::create_directories(dir_ / "s");
+    // The "renderer" copies the picture run.txt names: the golden, then two runs that each
+    // drift a little (run a: 1 pixel by 5; run b: 2 pixels, by 3 and 7).
+    write_png_rgba8(dir_ / "s" / "golden.png", chart({}));
+    write_png_rgba8(dir_ / "s" / "a.png", chart({5}));
+    write_png_rgba8(dir_ / "s" / "b.png", chart({3, 7}));
+    write_png_rgba8(dir_ / "s" / "photo.png", chart({}));
+    std::ofstream(dir_ / "s" / "draw.sh")
+        << "cp \"$2/$(cat \"$2/run.txt\").png\" \"$1/chart.png\"\n";
+    write_suite(
+        "mode = \"nothing\"\nmax_mismatch_percent = 50\nmax_channel_delta = 64\n"
+        "flip = { max_mean = 0.5 }\n");
+  }
+  void write_suite(const std::string& tolerance, const std::string& name = "t") {
+    std::ofstream(dir_ / "s" / (name + ".toml")) << "[defaults.tolerance]\n"
+                                                 << tolerance << R"(
+[[case]]
+name = "chart"
+command = ["sh", "{suite_dir}/draw.sh", "{out}", "{suite_dir}"]
+outputs = ["chart.png"]
+inputs = ["draw.sh", "run.txt"]
+
+[[case]]
+name = "photo"
+files = ["photo.png"]
+)";
+  }
+  void draw(const std::string& run) { std::ofstream(dir_ / "s" / "run.txt") << run; }
+  test::Outcome aosuite(const std::string& args) {
+    return test::run_shell("cd " + dir_.path().string() + " && " + AOSUITE_BIN + " " + args,
+                           dir_.path());
+  }
+  // Blesses the golden, then checks run a (both cases) and run b (the chart only).
+  void two_runs() {
+    draw("golden");
+    ASSERT_EQ(aosuite("bless s/t.toml").rc, 0);
+    draw("a");
+    ASSERT_EQ(aosuite("check s/t.toml --report reports/a").rc, 0);
+    draw("b");
+    ASSERT_EQ(aosuite("check s/t.toml --filter '^chart$' --report reports/b").rc, 0);
+  }
+  // The chart's FLIP mean in a run, as its results.json keeps it.
+  double flip_mean(const std::string& report) {
+    const nlohmann::json r =
+        nlohmann::json::parse(test::read_text(dir_ / "reports" / report / "results.json"));
+    for (const nlohmann::json& c : r.at("cases"))
+      if (c.at("id") == "chart") return c.at("images").at(0).at("metrics").at("flip").at("mean");
+    ADD_FAILURE() << "no chart in " << report;
+    return 0;
+  }
+  fs::path suggested() const { return dir_ / "goldens" / "t" / "tolerances.suggested.toml"; }
+  test::TempDir dir_;
+};
+
+TEST(RoundOutward, FourSignificantDigitsNeverInsideTheValue) {
+  EXPECT_EQ(harness::round_outward(100.0 / 48, true), 2.084);
+  EXPECT_EQ(harness::round_outward(0.0625, true), 0.0625);  // exact: kept
+  EXPECT_EQ(harness::round_outward(0.99987654, false), 0.9998);
+  EXPECT_EQ(harness::round_outward(123456, true), 123500);
+  EXPECT_EQ(harness::round_outward(0, true), 0);
+  for (double v : {1.0 / 3, 2.0 / 3, 1e-7 / 3, 0.1 + 0.2, 100.0 / 3072}) {
+    EXPECT_GE(harness::round_outward(v, true), v);
+    EXPECT_LE(harness::round_outward(v, false), v);
+  }
+}
+
+// The suggestion is the largest of what both runs measured, in the suite's keys; put into the
+// suite it passes both runs' images, and one step tighter it fails the run that set it.
+TEST_F(TolerancesSuggest, TheTightestLimitsPassingEveryRun) {
+  two_runs();
+  const test::Outcome r =
+      aosuite("tolerances suggest s/t.toml --report reports/a --report reports/b");
+  EXPECT_EQ(r.rc, 1) << r.out << r.err;  // photo was seen in one run only
+  const double flip = harness::round_outward(std::max(flip_mean("a"), flip_mean("b")), true);
+  ASSERT_GT(flip, 0);
+  const std::string toml = test::read_text(suggested());
+  for (const std::string& line :
+       {std::string("[\"chart\"]  # from 2 runs\n"), std::string("mode = \"nothing\"\n"),
+        std::string("max_mismatch_percent = 4.167  # now 50\n"),  // 2 of 48 pixels
+        std::string("max_channel_delta = 7  # now 64\n"),
+        fmt::format("flip = {{ max_mean = {} }}  # now {{ max_mean = 0.5 }}\n", flip),
+        std::string("#   photo: seen in one run (reports/a); a suggestion needs two or more\n")}) {
+    EXPECT_NE(toml.find(line), std::string::npos) << line << "in\n" << toml;
+  }
+  EXPECT_NE(toml.find("from 2 runs:\n#   reports/a\n#   reports/b\n"), std::string::npos) << toml;
+  EXPECT_NE(r.out.find("max Δ 64 -> 7"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("suggested tolerances for 1 of 2 cases from 2 runs"), std::string::npos);
+
+  const auto check_both = [&](const std::string& tolerance) {
+    write_suite(tolerance);
+    std::vector<int> rcs;
+    for (const char* run : {"a", "b"}) {
+      draw(run);
+      rcs.push_back(
+          aosuite(fmt::format("check s/t.toml --filter '^chart$' --report reports/v{}", run)).rc);
+    }
+    return rcs;
+  };
+  const auto tolerance = [&](double mismatch, int delta, double flip_max) {
+    return fmt::format(
+        "mode = \"nothing\"\nmax_mismatch_percent = {}\nmax_channel_delta = {}\n"
+        "flip = {{ max_mean = {} }}\n",
+        mismatch, delta, flip_max);
+  };
+  EXPECT_EQ(check_both(tolerance(4.167, 7, flip)), (std::vector{0, 0}));
+  EXPECT_EQ(check_both(tolerance(4.166, 7, flip)), (std::vector{0, 1}));
+  EXPECT_EQ(check_both(tolerance(4.167, 6, flip)), (std::vector{0, 1}));
+  const std::vector<int> tighter_flip = check_both(tolerance(4.167, 7, flip * 0.999));
+  EXPECT_EQ(tighter_flip[flip_mean("a") > flip_mean("b") ? 0 : 1], 1);
+}
+
+// --margin widens each limit by a share of what was measured, before rounding outward.
+TEST_F(TolerancesSuggest, AMarginIsAddedToWhatWasMeasured) {
+  two_runs();
+  ASSERT_EQ(aosuite("tolerances suggest s/t.toml --report reports/a --report reports/b "
+                    "--margin 10 --out margin.toml")
+                .rc,
+            1);
+  const std::string toml = test::read_text(dir_ / "margin.toml");
+  EXPECT_NE(toml.find("max_mismatch_percent = 4.584  # now 50\n"), std::string::npos) << toml;
+  EXPECT_NE(toml.find("max_channel_delta = 8  # now 64\n"), std::string::npos) << toml;
+  EXPECT_NE(toml.find("with a margin of 10 %"), std::string::npos) << toml;
+  EXPECT_FALSE(fs::exists(suggested()));
+}
+
+// A golden blessed since the runs makes their numbers stale: nothing is suggested from them.
+TEST_F(TolerancesSuggest, RunsAgainstAnOlderGoldenAreNotUsed) {
+  two_runs();
+  ASSERT_EQ(aosuite("bless s/t.toml --force").rc, 0);  // run b's picture is the golden now
+  const test::Outcome r =
+      aosuite("tolerances suggest s/t.toml --report reports/a --report reports/b");
+  EXPECT_EQ(r.rc, 2) << r.out << r.err;
+  EXPECT_NE(r.out.find("chart/chart.png changed since (check again)"), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(suggested()));
+}
+
+// Bad input: one line on stderr naming the file, exit 2, nothing written.
+TEST_F(TolerancesSuggest, BadInputIsOneLineAndWritesNothing) {
+  two_runs();
+  write_suite("max_mismatch_percent = 50\n", "u");
+  draw("a");
+  aosuite("check s/u.toml --report reports/u");  // NEW: suite u has no goldens
+  ASSERT_TRUE(fs::exists(dir_ / "reports" / "u" / "results.json"));
+  const std::string a = "tolerances suggest s/t.toml --report reports/a ";
+  const struct {
+    std::string args, names;
+  } bad[] = {
+      {a + "--report reports/missing", "reports/missing/results.json"},
+      {a + "--report reports/u", "reports/u/results.json: a run of suite 'u', not 't'"},
+      {a + "--report reports/a", "reports/a/results.json: given twice"},
+      {a, "no case of s/t.toml has two usable runs"},
+  };
+  for (const auto& b : bad) {
+    const test::Outcome r = aosuite(b.args);
+    EXPECT_EQ(r.rc, 2) << b.args;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_NE(r.err.find(b.names), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(suggested())) << b.args;
+  }
+}
+
+}  // namespace
+}  // namespace aosuite
