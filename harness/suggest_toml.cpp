@@ -26,8 +26,18 @@ std::string case_toml(const Suggestion& s) {
     out += fmt::format("mode = \"{}\"\n", resemble::mode_name(next.mode));
     out += line("max_mismatch_percent", fmt::format("{}", next.max_mismatch_percent),
                 fmt::format("{}", now.max_mismatch_percent));
-    out += line("max_channel_delta", fmt::format("{}", next.max_channel_delta),
-                fmt::format("{}", now.max_channel_delta));
+    const auto range = [](long long lo, long long hi) { return fmt::format("[{}, {}]", lo, hi); };
+    if (now.min_channel_delta > 0) {  // written as the suite wrote it: two-sided
+      out += line("channel_delta", range(next.min_channel_delta, next.max_channel_delta),
+                  range(now.min_channel_delta, now.max_channel_delta));
+    } else {
+      out += line("max_channel_delta", fmt::format("{}", next.max_channel_delta),
+                  fmt::format("{}", now.max_channel_delta));
+    }
+    if (now.max_differing_pixels >= 0) {
+      out += line("differing_pixels", range(next.min_differing_pixels, next.max_differing_pixels),
+                  range(now.min_differing_pixels, now.max_differing_pixels));
+    }
   }
   for (std::size_t i = 0; i < next.gates.size(); ++i) {
     const std::string gates = gates_toml(next.gates[i]);

@@ -90,7 +90,8 @@ std::optional<double> value_of(const ImageVerdict& v, std::string_view region,
 struct Observed {
   bool resemble = false;  // some image had Resemble's numbers
   double mismatch = 0;
-  int delta = 0;
+  int delta = 0, least_delta = 255;  // the two-sided budgets' ends
+  long long pixels = 0, least_pixels = -1;
   std::vector<std::optional<double>> limits;  // per limit, in for_each_limit's order
 };
 
@@ -156,6 +157,10 @@ std::string observe(const Suite& suite, const Case& c, const Run& run, const Cas
       seen.resemble = true;
       seen.mismatch = std::max(seen.mismatch, v->mismatch_percent);
       seen.delta = std::max(seen.delta, v->max_channel_delta);
+      seen.least_delta = std::min(seen.least_delta, v->max_channel_delta);
+      seen.pixels = std::max(seen.pixels, v->differing_pixels);
+      seen.least_pixels = seen.least_pixels < 0 ? v->differing_pixels
+                                                : std::min(seen.least_pixels, v->differing_pixels);
     }
     if (v->identical) continue;  // passes any limit: nothing measured
     if (const std::string lack = observe_gates(c.tolerance, *v, seen); !lack.empty())
@@ -171,6 +176,13 @@ void propose(const Observed& seen, const SuggestOptions& o, Suggestion& s) {
   s.proposed.resemble = s.current.resemble && seen.resemble;
   s.proposed.max_mismatch_percent = std::min(100.0, round_outward(seen.mismatch * up, true));
   s.proposed.max_channel_delta = std::min(255, int(std::ceil(seen.delta * up)));
+  // A two-sided budget keeps its sides: the least seen (less the margin) at its lower end.
+  if (s.current.min_channel_delta > 0)
+    s.proposed.min_channel_delta = int(std::floor(seen.least_delta / up));
+  if (s.current.max_differing_pixels >= 0)
+    s.proposed.max_differing_pixels = (long long)std::ceil(double(seen.pixels) * up);
+  if (s.current.min_differing_pixels > 0)
+    s.proposed.min_differing_pixels = (long long)std::floor(double(seen.least_pixels) / up);
   std::size_t i = 0;
   for_each_limit(
       s.proposed, [&](std::string_view region, const metric::Gates& g, metric::Limit& l) {

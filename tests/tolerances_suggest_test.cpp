@@ -154,6 +154,24 @@ TEST_F(TolerancesSuggest, AMarginIsAddedToWhatWasMeasured) {
   EXPECT_FALSE(fs::exists(suggested()));
 }
 
+// A two-sided budget is suggested two-sided: the least and the most each run measured.
+TEST_F(TolerancesSuggest, TwoSidedBudgetsKeepBothEnds) {
+  write_suite(
+      "mode = \"nothing\"\nmax_mismatch_percent = 50\nchannel_delta = [1, 64]\n"
+      "differing_pixels = [1, 40]\n");
+  draw("golden");
+  ASSERT_EQ(aosuite("bless s/t.toml --filter '^chart$'").rc, 0);
+  draw("a");
+  ASSERT_EQ(aosuite("check s/t.toml --filter '^chart$' --report reports/a").rc, 0);
+  draw("b");
+  ASSERT_EQ(aosuite("check s/t.toml --filter '^chart$' --report reports/b").rc, 0);
+  ASSERT_NE(aosuite("tolerances suggest s/t.toml --report reports/a --report reports/b").rc, 2);
+  const std::string toml = test::read_text(suggested());
+  EXPECT_NE(toml.find("channel_delta = [5, 7]  # now [1, 64]\n"), std::string::npos) << toml;
+  EXPECT_NE(toml.find("differing_pixels = [1, 2]  # now [1, 40]\n"), std::string::npos) << toml;
+  EXPECT_EQ(toml.find("max_channel_delta"), std::string::npos) << toml;
+}
+
 // A golden blessed since the runs makes their numbers stale: nothing is suggested from them.
 TEST_F(TolerancesSuggest, RunsAgainstAnOlderGoldenAreNotUsed) {
   two_runs();
