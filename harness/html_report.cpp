@@ -11,9 +11,10 @@
 #include <set>
 #include <string_view>
 
+#include "common/file_io.hpp"
 #include "harness/case_kind.hpp"
 #include "harness/escape.hpp"
-#include "image/image_io.hpp"
+#include "harness/report_images.hpp"
 
 namespace aosuite::harness {
 
@@ -38,60 +39,6 @@ std::string base64(std::span<const unsigned char> in) {
     }
   }
   return out;
-}
-
-// Whether `rel` names a plain file inside `dir` (no link, no ..): a report never shows
-// anything else on the machine.
-bool inside(const fs::path& dir, const std::string& rel) {
-  std::error_code ec;
-  const fs::path r = fs::path(rel).lexically_normal();
-  return !rel.empty() && r.is_relative() && !r.empty() && *r.begin() != ".." &&
-         fs::is_regular_file(fs::symlink_status(dir / r, ec));
-}
-
-// A thumbnail of `rel` (relative to `dir`) at most kThumb pixels wide and high: the image
-// itself when it is that small, else thumb_<name> beside it (made again when older than it).
-constexpr int kThumbW = 160, kThumbH = 120;
-std::string thumbnail(const fs::path& dir, const std::string& rel) {
-  if (!inside(dir, rel)) return "";
-  const fs::path file = dir / rel;
-  try {
-    const std::vector<unsigned char> bytes = read_file(file);
-    const ImageSize size = check_png(bytes, file.string());
-    if (size.width <= kThumbW && size.height <= kThumbH) return rel;
-    const std::string name = "thumb_" + file.filename().string();
-    const fs::path thumb = file.parent_path() / name;
-    std::error_code ec;
-    if (fs::exists(thumb, ec) && fs::last_write_time(thumb, ec) >= fs::last_write_time(file, ec)) {
-      return fs::path(rel).parent_path().string() + "/" + name;
-    }
-    const RgbaImage img = decode_png(bytes, file.string());
-    const int w = img.width(), h = img.height();
-    const int f = std::max((w + kThumbW - 1) / kThumbW, (h + kThumbH - 1) / kThumbH);
-    RgbaImage small((w + f - 1) / f, (h + f - 1) / f);
-    // Each thumbnail pixel: the rounded mean of the f x f block it covers.
-    for (int y = 0; y < small.height(); ++y) {
-      for (int x = 0; x < small.width(); ++x) {
-        int sum[4] = {0, 0, 0, 0}, count = 0;
-        for (int yy = y * f; yy < std::min(h, (y + 1) * f); ++yy) {
-          for (int xx = x * f; xx < std::min(w, (x + 1) * f); ++xx) {
-            const unsigned char* p = img.view().row(yy) + 4 * xx;
-            for (int k = 0; k < 4; ++k) sum[k] += p[k];
-            ++count;
-          }
-        }
-        unsigned char* out =
-            small.data() + 4 * (std::size_t(y) * std::size_t(small.width()) + std::size_t(x));
-        for (int k = 0; k < 4; ++k)
-          out[k] = static_cast<unsigned char>((sum[k] + count / 2) / count);
-      }
-    }
-    const std::vector<unsigned char> png = encode_png_rgba8(small, 6);
-    write_report_file(thumb, png);
-    return fs::path(rel).parent_path().string() + "/" + name;
-  } catch (const std::exception&) {
-    return "";  // an unreadable image gets no thumbnail; the case still shows why
-  }
 }
 
 // Collects the pictures, each stored once under its content hash.
@@ -214,6 +161,21 @@ void write_html_report(const RunResults& run, const fs::path& report_dir,
     const int sa = severity(run.cases[a].status), sb = severity(run.cases[b].status);
     return sa != sb ? sa > sb : margins[a] < margins[b];
   });
+  // What the page shows of an image: itself, or its preview when a browser cannot show it
+  // (made once per file, however many roles name it).
+  std::map<std::string, std::string> previews;
+  const auto shown = [&](const std::string& rel) {
+    const auto [it, added] = previews.try_emplace(rel);
+    if (added) it->second = shown_image(cases_dir, rel);
+    return it->second;
+  };
+  // The golden or new image of a verdict under `role`, and under `role`_file the file itself
+  // when what is shown is its preview: the page links it beside the picture.
+  const auto picture = [&](nlohmann::json& into, const std::string& role, const std::string& rel) {
+    const std::string show = shown(rel);
+    into[role] = url(show);
+    into[role + "_file"] = show != rel && inside(cases_dir, rel) ? "cases/" + rel : "";
+  };
 
   // The table's rows are drawn by the page from this, a screenful at a time: a report of
   // thousands of cases parses and lays out no more rows than are looked at.
@@ -225,18 +187,19 @@ void write_html_report(const RunResults& run, const fs::path& report_dir,
     for (const ImageVerdict& v : c.images) {
       mismatch += (mismatch.empty() ? "" : " / ") + v.mismatch_text;
       delta += (delta.empty() ? "" : " / ") + std::to_string(v.max_channel_delta);
-      images.push_back({{"image", v.image},
-                        {"status", status_name(v.status)},
-                        {"mismatch", v.mismatch_text},
-                        {"delta", v.max_channel_delta},
-                        {"identical", v.identical},
-                        {"message", printable(v.message)},
-                        {"new", url(file_of(c, v.image))},
-                        {"golden", url(file_of(c, "golden:" + v.image))},
-                        {"diff", url(file_of(c, "diff:" + v.image))},
-                        {"heat", url(file_of(c, "heat:" + v.image))},
-                        {"regions", url(file_of(c, "regions:" + v.image))},
-                        {"gates", gates_json(v)}});
+      nlohmann::json image = {{"image", v.image},
+                              {"status", status_name(v.status)},
+                              {"mismatch", v.mismatch_text},
+                              {"delta", v.max_channel_delta},
+                              {"identical", v.identical},
+                              {"message", printable(v.message)},
+                              {"diff", url(file_of(c, "diff:" + v.image))},
+                              {"heat", url(file_of(c, "heat:" + v.image))},
+                              {"regions", url(file_of(c, "regions:" + v.image))},
+                              {"gates", gates_json(v)}};
+      picture(image, "new", file_of(c, v.image));
+      picture(image, "golden", file_of(c, "golden:" + v.image));
+      images.push_back(std::move(image));
     }
     // The thumbnail: the first gated image (the golden where there is no new one).
     std::string thumb;
@@ -244,7 +207,7 @@ void write_html_report(const RunResults& run, const fs::path& report_dir,
       const std::string& first = c.images.front().image;
       std::string rel = file_of(c, first);
       if (rel.empty() || !inside(cases_dir, rel)) rel = file_of(c, "golden:" + first);
-      thumb = url(thumbnail(cases_dir, rel));
+      thumb = url(thumbnail(cases_dir, shown(rel)));
     }
     nlohmann::json about = nlohmann::json::object();
     for (const auto& [label, value] : c.labels) about[printable(label)] = printable(value);

@@ -123,11 +123,15 @@
   // --- one case beside the table -----------------------------------------------------------
   let current = -1, zoom = 0; // zoom 0: fit; else a factor of the natural size
   const detail = $("detail");
-  // Browsers show no EXR: such an image is a link to its file.
-  const fig = (src, cls, caption) =>
-    !src ? "" : src.endsWith(".exr")
-      ? `<figure><a href="${esc(url(src))}">${esc(src.split("/").pop())}</a><figcaption>${esc(caption)} (EXR)</figcaption></figure>`
-      : `<figure><img class="${cls}" src="${esc(url(src))}" alt="${esc(caption)}"><figcaption>${esc(caption)}</figcaption></figure>`;
+  // A picture and its caption; `file`, when given, is the image itself (an EXR), of which `src`
+  // is the PNG preview: linked beside it. A picture that cannot be loaded says so.
+  const fig = (src, caption, file) =>
+    !src && !file ? "" : `<figure>${src ? `<img src="${esc(url(src))}" alt="${esc(caption)}">` : ""}` +
+      `<figcaption>${esc(caption)}${file ? ` — <a href="${esc(file)}">${esc(file.split("/").pop())}</a>${src ? " (sRGB preview)" : ""}` : ""}</figcaption></figure>`;
+  document.addEventListener("error", (e) => {
+    const fail = e.target.closest && e.target.closest("figure");
+    if (fail && e.target.tagName === "IMG") fail.classList.add("missing");
+  }, true);
   function imageHtml(c, v) {
     const resemble = c.resemble ? ` ${esc(v.mismatch || "-")}% (allowed ${c.allowed}%), max channel Δ ${v.delta}` : "";
     let h = `<h3>${esc(v.image)} — <span class="${v.status}">${v.status}</span>${resemble}${v.identical ? ", byte-identical" : ""}</h3>`;
@@ -136,8 +140,8 @@
       h += "<table class=gates><tr><th>gate</th><th>value</th><th>limit</th><th>margin</th></tr>" +
         v.gates.map((g) => `<tr class="${g.pass ? "PASS" : "FAIL"}"><td>${esc(g.gate)}</td><td class=num>${esc(g.value)}</td><td class=num>${esc(g.limit)}</td><td class=num>${esc(g.margin)}</td></tr>`).join("") + "</table>";
     }
-    h += `<div class=images>${fig(v.golden, "", "golden")}${fig(v.new, "", "new")}${fig(v.diff, "", "diff")}${fig(v.heat, "", "FLIP error (magma)")}${fig(v.regions, "", "region map")}`;
-    if (v.golden && v.new && !v.identical && !v.new.endsWith(".exr")) {
+    h += `<div class=images>${fig(v.golden, "golden", v.golden_file)}${fig(v.new, "new", v.new_file)}${fig(v.diff, "diff")}${fig(v.heat, "FLIP error (magma)")}${fig(v.regions, "region map")}`;
+    if (v.golden && v.new && !v.identical) {
       h += `<figure><div class=swap><img class=golden src="${esc(url(v.golden))}" alt=golden><img class=new src="${esc(url(v.new))}" alt=new></div><figcaption>golden; hover for new</figcaption></figure>`;
       h += `<figure><div class=slider><img src="${esc(url(v.golden))}" alt=golden><img class=top src="${esc(url(v.new))}" alt=new><input type=range min=0 max=100 value=50 aria-label="new vs golden"></div><figcaption>slider: new (left) over golden</figcaption></figure>`;
     }
