@@ -71,20 +71,48 @@ std::string file_of(const CaseResult& c, const std::string& role) {
   return it == c.files.end() ? std::string() : it->second;
 }
 
-// How close a case came to its limits (negative = over): Resemble's allowed minus measured
-// mismatch, in percentage points, and each metric gate's margin as a percentage of its limit;
-// the smallest of them. NaN when nothing was measured.
-double margin_value(const CaseResult& c) {
+// A metric gate as the page names it ("edges: flip mean") and its limit ("≤ 0.02").
+std::string gate_name(const metric::Outcome& o) {
+  return (o.region.empty() ? "" : o.region + ": ") + o.metric + " " + o.stat;
+}
+std::string limit_text(const metric::Outcome& o) {
+  return o.stat == "nonfinite" ? "0" : fmt::format("{}{:.6g}", o.is_max ? "≤ " : "≥ ", o.limit);
+}
+
+// The gate a case came nearest to failing, in that gate's own units: Resemble's mismatch in
+// percent (margin in percentage points), or a metric gate's value, limit and margin. `score`
+// ranks cases across kinds of gate: Resemble's margin, or a metric's as a percentage of its
+// limit (negative = over); NaN when nothing was measured.
+struct Nearest {
+  double score = std::nan("");
+  std::string value, limit, margin;
+};
+
+Nearest nearest_gate(const CaseResult& c) {
+  Nearest n;
   double worst = HUGE_VAL;
   for (const ImageVerdict& v : c.images) {
     if (v.status != Status::kPass && v.status != Status::kFail) continue;
-    if (c.tolerance.resemble)
-      worst = std::min(worst, c.tolerance.max_mismatch_percent - v.mismatch_percent);
+    // Which image, when the case has several.
+    const std::string of = c.images.size() > 1 ? v.image + ": " : "";
+    if (c.tolerance.resemble) {
+      const double m = c.tolerance.max_mismatch_percent - v.mismatch_percent;
+      if (m < worst) {
+        worst = m;
+        n = {m, fmt::format("{}{}%", of, v.mismatch_text),
+             fmt::format("≤ {}%", c.tolerance.max_mismatch_percent), fmt::format("{:+.4f}", m)};
+      }
+    }
     for (const metric::Outcome& o : v.outcomes) {
-      worst = std::min(worst, o.limit != 0 ? 100 * o.margin / std::abs(o.limit) : o.margin);
+      const double m = o.limit != 0 ? 100 * o.margin / std::abs(o.limit) : o.margin;
+      if (m < worst) {
+        worst = m;
+        n = {m, fmt::format("{}{} {:.6g}", of, gate_name(o), o.value), limit_text(o),
+             fmt::format("{:+.6g}", o.margin)};
+      }
     }
   }
-  return std::isfinite(worst) ? worst : std::nan("");
+  return n;
 }
 
 // The tolerance in words: Resemble's gate when it holds, then each metric gate.
@@ -116,20 +144,13 @@ std::string tolerance_text(const Tolerance& t) {
 nlohmann::json gates_json(const ImageVerdict& v) {
   nlohmann::json out = nlohmann::json::array();
   for (const metric::Outcome& o : v.outcomes) {
-    out.push_back(
-        {{"gate", (o.region.empty() ? "" : o.region + ": ") + o.metric + " " + o.stat},
-         {"value", fmt::format("{:.6g}", o.value)},
-         {"limit",
-          o.stat == "nonfinite" ? "0" : fmt::format("{}{:.6g}", o.is_max ? "≤ " : "≥ ", o.limit)},
-         {"margin", fmt::format("{:+.6g}", o.margin)},
-         {"pass", o.pass}});
+    out.push_back({{"gate", gate_name(o)},
+                   {"value", fmt::format("{:.6g}", o.value)},
+                   {"limit", limit_text(o)},
+                   {"margin", fmt::format("{:+.6g}", o.margin)},
+                   {"pass", o.pass}});
   }
   return out;
-}
-
-std::string margin(const CaseResult& c) {
-  const double m = margin_value(c);
-  return std::isnan(m) ? "" : fmt::format("{:+.4f}", m);
 }
 
 }  // namespace
@@ -152,14 +173,14 @@ void write_html_report(const RunResults& run, const fs::path& report_dir,
   // Failures and NEW first, then flaky, then passes by margin: near misses before easy passes.
   std::vector<std::size_t> order(run.cases.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-  std::vector<double> margins(run.cases.size());
-  for (std::size_t i = 0; i < run.cases.size(); ++i) {
-    const double m = margin_value(run.cases[i]);
-    margins[i] = std::isnan(m) ? 1e300 : m;
-  }
+  std::vector<Nearest> nearest(run.cases.size());
+  for (std::size_t i = 0; i < run.cases.size(); ++i) nearest[i] = nearest_gate(run.cases[i]);
+  const auto margin = [&](std::size_t i) {
+    return std::isnan(nearest[i].score) ? 1e300 : nearest[i].score;
+  };
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
     const int sa = severity(run.cases[a].status), sb = severity(run.cases[b].status);
-    return sa != sb ? sa > sb : margins[a] < margins[b];
+    return sa != sb ? sa > sb : margin(a) < margin(b);
   });
   // What the page shows of an image: itself, or its preview when a browser cannot show it
   // (made once per file, however many roles name it).
@@ -182,10 +203,9 @@ void write_html_report(const RunResults& run, const fs::path& report_dir,
   nlohmann::json data = nlohmann::json::array();
   for (std::size_t n = 0; n < order.size(); ++n) {
     const CaseResult& c = run.cases[order[n]];
-    std::string mismatch, delta;
+    std::string delta;
     nlohmann::json images = nlohmann::json::array();
     for (const ImageVerdict& v : c.images) {
-      mismatch += (mismatch.empty() ? "" : " / ") + v.mismatch_text;
       delta += (delta.empty() ? "" : " / ") + std::to_string(v.max_channel_delta);
       nlohmann::json image = {{"image", v.image},
                               {"status", status_name(v.status)},
@@ -227,13 +247,14 @@ void write_html_report(const RunResults& run, const fs::path& report_dir,
                     {"exit", c.exit_status},
                     {"stderr", printable_lines(c.command_stderr)},
                     {"attempts", c.attempts},
-                    {"mismatch", mismatch},
+                    {"measured", nearest[order[n]].value},
+                    {"limit", nearest[order[n]].limit},
+                    {"margin", nearest[order[n]].margin},
                     {"delta", delta},
                     {"seconds", std::round(c.seconds * 100) / 100},
                     {"thumb", thumb},
                     {"allowed", c.tolerance.max_mismatch_percent},
                     {"resemble", c.tolerance.resemble},
-                    {"margin", margin(c)},
                     {"about", about},
                     {"params", params},
                     {"times", times},
@@ -274,8 +295,8 @@ void write_html_report(const RunResults& run, const fs::path& report_dir,
       "<p class=keys>Keys: j/k or ↓/↑ move, n/p next/previous failure, Enter open, Esc close, "
       "x select, / filter; in a case: f fit, 1 one-to-one, +/− zoom.</p></header>\n";
   body +=
-      "<main><table id=cases><thead><tr><th></th><th>status</th><th>case</th><th>mismatch "
-      "%</th><th>allowed %</th><th>margin</th><th>max Δ</th><th>time s</th><th>image</th>"
+      "<main><table id=cases><thead><tr><th></th><th>status</th><th>case</th><th>measured</th>"
+      "<th>limit</th><th>margin</th><th>max Δ</th><th>time s</th><th>image</th>"
       "</tr></thead><tbody></tbody></table>\n<p id=more></p><noscript>This report needs "
       "JavaScript; results.json holds the same.</noscript>\n";
   // Each registered kind with cases here adds its own section (the AO bench: its tables).

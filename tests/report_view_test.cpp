@@ -1,6 +1,6 @@
 // What the report shows, as a reviewer sees it in headless Chromium at 1280x720: float (EXR)
 // images as pictures, through PNG previews beside them in the report folder, made again when
-// the EXR changes.
+// the EXR changes; a metric-gated row in its gate's own units.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -107,6 +107,19 @@ TEST_F(ReportView, ExrImagesAreShownThroughPngPreviews) {
   EXPECT_NE(panel.find("<a href=\"cases/ao.exr/image.exr\">image.exr</a>"), std::string::npos);
   EXPECT_EQ(panel.find("<figure class=\"missing\">"), std::string::npos)
       << "a picture did not load";
+}
+
+// A FLIP-gated row shows FLIP's own value, limit and margin, not a mismatch percentage.
+TEST_F(ReportView, AMetricGatedRowShowsItsGatesOwnUnits) {
+  ASSERT_EQ(check().rc, 1);
+  const nlohmann::json cases = data();
+  const nlohmann::json& exr = by_id(cases, "ao.exr");
+  const nlohmann::json& flip = exr.at("images").at(0).at("gates").at(0);
+  EXPECT_EQ(exr.at("measured"), "flip mean " + flip.at("value").get<std::string>());
+  EXPECT_EQ(exr.at("limit"), "≤ 0.05");
+  EXPECT_EQ(exr.at("margin"), flip.at("margin"));
+  EXPECT_TRUE(flip.at("margin").get<std::string>().starts_with("-"));
+  EXPECT_NE(dom("").find("<td class=\"num\">≤ 0.05</td>"), std::string::npos);
 }
 
 // A preview belongs to the bytes it was made from: when the EXR changes (the same path, the

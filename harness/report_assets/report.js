@@ -28,7 +28,7 @@
       `<td><span class=${c.status}>${c.status}</span></td><td class=id><a href="#case=${esc(encodeURIComponent(c.id))}">${esc(c.id)}</a>` +
       (c.source ? `<div class=src>${esc(c.source)}</div>` : "") +
       (c.status !== "PASS" && c.message ? `<div class=msg>${esc(c.message)}</div>` : "") +
-      `</td><td class=num>${esc(c.mismatch)}</td><td class=num>${c.allowed}</td><td class=num>${esc(c.margin)}</td>` +
+      `</td><td class=num>${esc(c.measured)}</td><td class=num>${esc(c.limit)}</td><td class=num>${esc(c.margin)}</td>` +
       `<td class=num>${esc(c.delta)}</td><td class=num>${c.seconds.toFixed(2)}</td><td>${thumb}</td></tr>`;
   }
   function drawTo(count) {
