@@ -278,7 +278,13 @@ void write_html_report(const RunResults& run, const fs::path& report_dir,
       run.environment.empty() ? ""
                               : " Made on " + escape_markup(run.environment) + " (platform <code>" +
                                     escape_markup(run.platform) + "</code>).");
-  body += R"(<nav id=bar><span id=filters>)";
+  // Two views of the same cases: the table (one case opened beside it), and every FAIL, NEW and
+  // ERROR case on one scrolling page.
+  body += fmt::format(
+      "<nav id=bar><span id=views><button data-view=table class=on>table</button> <button "
+      "data-view=failures>failures on one page (<span id=failing>{}</span>)</button></span> "
+      "<span id=filters>",
+      n.fail + n.fresh + n.error);
   for (const char* st : {"ERROR", "FAIL", "NEW", "FLAKY", "PASS"}) {
     int count_of = 0;
     for (const CaseResult& c : run.cases) count_of += status_name(c.status) == st;
@@ -286,17 +292,18 @@ void write_html_report(const RunResults& run, const fs::path& report_dir,
         R"(<label class={0}><input type=checkbox data-status={0} checked> {0} ({1})</label> )", st,
         count_of);
   }
+  // The approve bar stays at the top of the window however far either view is scrolled.
   body +=
       "</span><input id=search type=search placeholder=\"filter: id, path, message (/)\" "
       "aria-label=filter> <span id=shown></span></nav>\n"
-      "<div id=approve><button id=select-failing>select shown FAIL/NEW</button> <button "
-      "id=select-none>clear</button> <span id=selected>0 selected</span>: <code "
-      "id=command></code> <button id=copy>copy</button> <span id=copied></span></div>\n"
       "<p class=keys>Keys: j/k or ↓/↑ move, n/p next/previous failure, Enter open, Esc close, "
-      "x select, / filter; in a case: f fit, 1 one-to-one, +/− zoom.</p></header>\n";
+      "x select, / filter, v switch view; in a case: f fit, 1 one-to-one, +/− zoom.</p>"
+      "</header>\n<div id=approve><button id=select-failing>select shown FAIL/NEW</button> "
+      "<button id=select-none>clear</button> <span id=selected>0 selected</span>: <code "
+      "id=command></code> <button id=copy>copy</button> <span id=copied></span></div>\n";
   body +=
-      "<main><table id=cases><thead><tr><th></th><th>status</th><th>case</th><th>measured</th>"
-      "<th>limit</th><th>margin</th><th>max Δ</th><th>time s</th><th>image</th>"
+      "<main><div id=table-view><table id=cases><thead><tr><th></th><th>status</th><th>case</th>"
+      "<th>measured</th><th>limit</th><th>margin</th><th>max Δ</th><th>time s</th><th>image</th>"
       "</tr></thead><tbody></tbody></table>\n<p id=more></p><noscript>This report needs "
       "JavaScript; results.json holds the same.</noscript>\n";
   // Each registered kind with cases here adds its own section (the AO bench: its tables).
@@ -305,7 +312,9 @@ void write_html_report(const RunResults& run, const fs::path& report_dir,
     if (!is_image_kind(c.kind)) kinds.insert(c.kind);
   for (const std::string& name : kinds)
     if (const CaseKind* kind = find_kind(name)) body += kind->report_section(run, report_dir);
-  body += "</main><aside id=detail hidden></aside>\n";
+  body +=
+      "</div><div id=failures-view hidden><div id=failures></div><p id=failures-more></p></div>"
+      "</main><aside id=detail hidden></aside>\n";
   const std::string page = fmt::format(
       "<!doctype html>\n<html lang=en><head><meta charset=utf-8><title>aosuite: {}</title>"
       "<style>{}</style></head><body>\n{}<script type=\"application/json\" id=meta>{}</script>"

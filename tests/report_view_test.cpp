@@ -1,6 +1,7 @@
 // What the report shows, as a reviewer sees it in headless Chromium at 1280x720: float (EXR)
 // images as pictures, through PNG previews beside them in the report folder, made again when
-// the EXR changes; a metric-gated row in its gate's own units.
+// the EXR changes; a metric-gated row in its gate's own units; and every failure on one page,
+// golden | new | diff side by side, whose boxes feed the approve bar's bless command.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -120,6 +121,38 @@ TEST_F(ReportView, AMetricGatedRowShowsItsGatesOwnUnits) {
   EXPECT_EQ(exr.at("margin"), flip.at("margin"));
   EXPECT_TRUE(flip.at("margin").get<std::string>().starts_with("-"));
   EXPECT_NE(dom("").find("<td class=\"num\">≤ 0.05</td>"), std::string::npos);
+}
+
+// The page of failures: both cases, golden | new | diff and FLIP's map of each as pictures that
+// load, the EXRs linked, the failing gate in words; its boxes feed the approve bar. Keys: v
+// (that page), n (its second case), x (select it).
+TEST_F(ReportView, EveryFailureIsOnOnePageAndCanBeSelected) {
+  ASSERT_EQ(check().rc, 1);
+  const nlohmann::json cases = data();
+  ASSERT_EQ(cases.size(), 2u);
+  const std::string page = dom("#keys=vnx");
+  EXPECT_NE(page.find("<div id=\"table-view\" hidden=\"\">"), std::string::npos);
+  EXPECT_NE(page.find("<div id=\"failures-view\">"), std::string::npos);
+  for (const nlohmann::json& c : cases) {
+    const std::string id = c.at("id");
+    EXPECT_NE(page.find(">" + id + "</a> <span class=\"FAIL\">FAIL</span>"), std::string::npos)
+        << id;
+    const nlohmann::json& v = c.at("images").at(0);
+    std::vector<std::string> roles = {"golden", "new", "heat"};
+    if (id == "chart.png") roles.push_back("diff");  // Resemble's diff: 8-bit images only
+    for (const std::string& role : roles) {
+      const std::string src = v.at(role);
+      EXPECT_NE(page.find("<img src=\"" + src + "\""), std::string::npos) << id << " " << role;
+    }
+    const std::string gate = v.at("gates").at(0).at("value");
+    EXPECT_NE(page.find("<p>flip mean " + gate + " &gt; 0.05</p>"), std::string::npos) << id;
+  }
+  EXPECT_NE(page.find("<a href=\"cases/ao.exr/image.exr\">image.exr</a>"), std::string::npos);
+  EXPECT_EQ(page.find("<figure class=\"missing\">"), std::string::npos) << "a picture did not load";
+  const std::string second =
+      std::regex_replace(cases.at(1).at("id").get<std::string>(), std::regex(R"(\.)"), R"(\.)");
+  EXPECT_NE(page.find("--filter '^" + second + "$'</code>"), std::string::npos) << page;
+  EXPECT_NE(page.find("data-copy-covered=\"false\""), std::string::npos);
 }
 
 // A preview belongs to the bytes it was made from: when the EXR changes (the same path, the
