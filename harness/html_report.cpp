@@ -11,9 +11,10 @@
 #include <set>
 #include <string_view>
 
+#include "common/file_io.hpp"
 #include "harness/case_kind.hpp"
 #include "harness/escape.hpp"
-#include "image/image_io.hpp"
+#include "harness/report_images.hpp"
 
 namespace aosuite::harness {
 
@@ -38,60 +39,6 @@ std::string base64(std::span<const unsigned char> in) {
     }
   }
   return out;
-}
-
-// Whether `rel` names a plain file inside `dir` (no link, no ..): a report never shows
-// anything else on the machine.
-bool inside(const fs::path& dir, const std::string& rel) {
-  std::error_code ec;
-  const fs::path r = fs::path(rel).lexically_normal();
-  return !rel.empty() && r.is_relative() && !r.empty() && *r.begin() != ".." &&
-         fs::is_regular_file(fs::symlink_status(dir / r, ec));
-}
-
-// A thumbnail of `rel` (relative to `dir`) at most kThumb pixels wide and high: the image
-// itself when it is that small, else thumb_<name> beside it (made again when older than it).
-constexpr int kThumbW = 160, kThumbH = 120;
-std::string thumbnail(const fs::path& dir, const std::string& rel) {
-  if (!inside(dir, rel)) return "";
-  const fs::path file = dir / rel;
-  try {
-    const std::vector<unsigned char> bytes = read_file(file);
-    const ImageSize size = check_png(bytes, file.string());
-    if (size.width <= kThumbW && size.height <= kThumbH) return rel;
-    const std::string name = "thumb_" + file.filename().string();
-    const fs::path thumb = file.parent_path() / name;
-    std::error_code ec;
-    if (fs::exists(thumb, ec) && fs::last_write_time(thumb, ec) >= fs::last_write_time(file, ec)) {
-      return fs::path(rel).parent_path().string() + "/" + name;
-    }
-    const RgbaImage img = decode_png(bytes, file.string());
-    const int w = img.width(), h = img.height();
-    const int f = std::max((w + kThumbW - 1) / kThumbW, (h + kThumbH - 1) / kThumbH);
-    RgbaImage small((w + f - 1) / f, (h + f - 1) / f);
-    // Each thumbnail pixel: the rounded mean of the f x f block it covers.
-    for (int y = 0; y < small.height(); ++y) {
-      for (int x = 0; x < small.width(); ++x) {
-        int sum[4] = {0, 0, 0, 0}, count = 0;
-        for (int yy = y * f; yy < std::min(h, (y + 1) * f); ++yy) {
-          for (int xx = x * f; xx < std::min(w, (x + 1) * f); ++xx) {
-            const unsigned char* p = img.view().row(yy) + 4 * xx;
-            for (int k = 0; k < 4; ++k) sum[k] += p[k];
-            ++count;
-          }
-        }
-        unsigned char* out =
-            small.data() + 4 * (std::size_t(y) * std::size_t(small.width()) + std::size_t(x));
-        for (int k = 0; k < 4; ++k)
-          out[k] = static_cast<unsigned char>((sum[k] + count / 2) / count);
-      }
-    }
-    const std::vector<unsigned char> png = encode_png_rgba8(small, 6);
-    write_report_file(thumb, png);
-    return fs::path(rel).parent_path().string() + "/" + name;
-  } catch (const std::exception&) {
-    return "";  // an unreadable image gets no thumbnail; the case still shows why
-  }
 }
 
 // Collects the pictures, each stored once under its content hash.
@@ -124,20 +71,48 @@ std::string file_of(const CaseResult& c, const std::string& role) {
   return it == c.files.end() ? std::string() : it->second;
 }
 
-// How close a case came to its limits (negative = over): Resemble's allowed minus measured
-// mismatch, in percentage points, and each metric gate's margin as a percentage of its limit;
-// the smallest of them. NaN when nothing was measured.
-double margin_value(const CaseResult& c) {
+// A metric gate as the page names it ("edges: flip mean") and its limit ("≤ 0.02").
+std::string gate_name(const metric::Outcome& o) {
+  return (o.region.empty() ? "" : o.region + ": ") + o.metric + " " + o.stat;
+}
+std::string limit_text(const metric::Outcome& o) {
+  return o.stat == "nonfinite" ? "0" : fmt::format("{}{:.6g}", o.is_max ? "≤ " : "≥ ", o.limit);
+}
+
+// The gate a case came nearest to failing, in that gate's own units: Resemble's mismatch in
+// percent (margin in percentage points), or a metric gate's value, limit and margin. `score`
+// ranks cases across kinds of gate: Resemble's margin, or a metric's as a percentage of its
+// limit (negative = over); NaN when nothing was measured.
+struct Nearest {
+  double score = std::nan("");
+  std::string value, limit, margin;
+};
+
+Nearest nearest_gate(const CaseResult& c) {
+  Nearest n;
   double worst = HUGE_VAL;
   for (const ImageVerdict& v : c.images) {
     if (v.status != Status::kPass && v.status != Status::kFail) continue;
-    if (c.tolerance.resemble)
-      worst = std::min(worst, c.tolerance.max_mismatch_percent - v.mismatch_percent);
+    // Which image, when the case has several.
+    const std::string of = c.images.size() > 1 ? v.image + ": " : "";
+    if (c.tolerance.resemble) {
+      const double m = c.tolerance.max_mismatch_percent - v.mismatch_percent;
+      if (m < worst) {
+        worst = m;
+        n = {m, fmt::format("{}{}%", of, v.mismatch_text),
+             fmt::format("≤ {}%", c.tolerance.max_mismatch_percent), fmt::format("{:+.4f}", m)};
+      }
+    }
     for (const metric::Outcome& o : v.outcomes) {
-      worst = std::min(worst, o.limit != 0 ? 100 * o.margin / std::abs(o.limit) : o.margin);
+      const double m = o.limit != 0 ? 100 * o.margin / std::abs(o.limit) : o.margin;
+      if (m < worst) {
+        worst = m;
+        n = {m, fmt::format("{}{} {:.6g}", of, gate_name(o), o.value), limit_text(o),
+             fmt::format("{:+.6g}", o.margin)};
+      }
     }
   }
-  return std::isfinite(worst) ? worst : std::nan("");
+  return n;
 }
 
 // The tolerance in words: Resemble's gate when it holds, then each metric gate.
@@ -169,20 +144,13 @@ std::string tolerance_text(const Tolerance& t) {
 nlohmann::json gates_json(const ImageVerdict& v) {
   nlohmann::json out = nlohmann::json::array();
   for (const metric::Outcome& o : v.outcomes) {
-    out.push_back(
-        {{"gate", (o.region.empty() ? "" : o.region + ": ") + o.metric + " " + o.stat},
-         {"value", fmt::format("{:.6g}", o.value)},
-         {"limit",
-          o.stat == "nonfinite" ? "0" : fmt::format("{}{:.6g}", o.is_max ? "≤ " : "≥ ", o.limit)},
-         {"margin", fmt::format("{:+.6g}", o.margin)},
-         {"pass", o.pass}});
+    out.push_back({{"gate", gate_name(o)},
+                   {"value", fmt::format("{:.6g}", o.value)},
+                   {"limit", limit_text(o)},
+                   {"margin", fmt::format("{:+.6g}", o.margin)},
+                   {"pass", o.pass}});
   }
   return out;
-}
-
-std::string margin(const CaseResult& c) {
-  const double m = margin_value(c);
-  return std::isnan(m) ? "" : fmt::format("{:+.4f}", m);
 }
 
 }  // namespace
@@ -205,38 +173,53 @@ void write_html_report(const RunResults& run, const fs::path& report_dir,
   // Failures and NEW first, then flaky, then passes by margin: near misses before easy passes.
   std::vector<std::size_t> order(run.cases.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-  std::vector<double> margins(run.cases.size());
-  for (std::size_t i = 0; i < run.cases.size(); ++i) {
-    const double m = margin_value(run.cases[i]);
-    margins[i] = std::isnan(m) ? 1e300 : m;
-  }
+  std::vector<Nearest> nearest(run.cases.size());
+  for (std::size_t i = 0; i < run.cases.size(); ++i) nearest[i] = nearest_gate(run.cases[i]);
+  const auto margin = [&](std::size_t i) {
+    return std::isnan(nearest[i].score) ? 1e300 : nearest[i].score;
+  };
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
     const int sa = severity(run.cases[a].status), sb = severity(run.cases[b].status);
-    return sa != sb ? sa > sb : margins[a] < margins[b];
+    return sa != sb ? sa > sb : margin(a) < margin(b);
   });
+  // What the page shows of an image: itself, or its preview when a browser cannot show it
+  // (made once per file, however many roles name it).
+  std::map<std::string, std::string> previews;
+  const auto shown = [&](const std::string& rel) {
+    const auto [it, added] = previews.try_emplace(rel);
+    if (added) it->second = shown_image(cases_dir, rel);
+    return it->second;
+  };
+  // The golden or new image of a verdict under `role`, and under `role`_file the file itself
+  // when what is shown is its preview: the page links it beside the picture.
+  const auto picture = [&](nlohmann::json& into, const std::string& role, const std::string& rel) {
+    const std::string show = shown(rel);
+    into[role] = url(show);
+    into[role + "_file"] = show != rel && inside(cases_dir, rel) ? "cases/" + rel : "";
+  };
 
   // The table's rows are drawn by the page from this, a screenful at a time: a report of
   // thousands of cases parses and lays out no more rows than are looked at.
   nlohmann::json data = nlohmann::json::array();
   for (std::size_t n = 0; n < order.size(); ++n) {
     const CaseResult& c = run.cases[order[n]];
-    std::string mismatch, delta;
+    std::string delta;
     nlohmann::json images = nlohmann::json::array();
     for (const ImageVerdict& v : c.images) {
-      mismatch += (mismatch.empty() ? "" : " / ") + v.mismatch_text;
       delta += (delta.empty() ? "" : " / ") + std::to_string(v.max_channel_delta);
-      images.push_back({{"image", v.image},
-                        {"status", status_name(v.status)},
-                        {"mismatch", v.mismatch_text},
-                        {"delta", v.max_channel_delta},
-                        {"identical", v.identical},
-                        {"message", printable(v.message)},
-                        {"new", url(file_of(c, v.image))},
-                        {"golden", url(file_of(c, "golden:" + v.image))},
-                        {"diff", url(file_of(c, "diff:" + v.image))},
-                        {"heat", url(file_of(c, "heat:" + v.image))},
-                        {"regions", url(file_of(c, "regions:" + v.image))},
-                        {"gates", gates_json(v)}});
+      nlohmann::json image = {{"image", v.image},
+                              {"status", status_name(v.status)},
+                              {"mismatch", v.mismatch_text},
+                              {"delta", v.max_channel_delta},
+                              {"identical", v.identical},
+                              {"message", printable(v.message)},
+                              {"diff", url(file_of(c, "diff:" + v.image))},
+                              {"heat", url(file_of(c, "heat:" + v.image))},
+                              {"regions", url(file_of(c, "regions:" + v.image))},
+                              {"gates", gates_json(v)}};
+      picture(image, "new", file_of(c, v.image));
+      picture(image, "golden", file_of(c, "golden:" + v.image));
+      images.push_back(std::move(image));
     }
     // The thumbnail: the first gated image (the golden where there is no new one).
     std::string thumb;
@@ -244,7 +227,7 @@ void write_html_report(const RunResults& run, const fs::path& report_dir,
       const std::string& first = c.images.front().image;
       std::string rel = file_of(c, first);
       if (rel.empty() || !inside(cases_dir, rel)) rel = file_of(c, "golden:" + first);
-      thumb = url(thumbnail(cases_dir, rel));
+      thumb = url(thumbnail(cases_dir, shown(rel)));
     }
     nlohmann::json about = nlohmann::json::object();
     for (const auto& [label, value] : c.labels) about[printable(label)] = printable(value);
@@ -264,13 +247,14 @@ void write_html_report(const RunResults& run, const fs::path& report_dir,
                     {"exit", c.exit_status},
                     {"stderr", printable_lines(c.command_stderr)},
                     {"attempts", c.attempts},
-                    {"mismatch", mismatch},
+                    {"measured", nearest[order[n]].value},
+                    {"limit", nearest[order[n]].limit},
+                    {"margin", nearest[order[n]].margin},
                     {"delta", delta},
                     {"seconds", std::round(c.seconds * 100) / 100},
                     {"thumb", thumb},
                     {"allowed", c.tolerance.max_mismatch_percent},
                     {"resemble", c.tolerance.resemble},
-                    {"margin", margin(c)},
                     {"about", about},
                     {"params", params},
                     {"times", times},
@@ -294,7 +278,13 @@ void write_html_report(const RunResults& run, const fs::path& report_dir,
       run.environment.empty() ? ""
                               : " Made on " + escape_markup(run.environment) + " (platform <code>" +
                                     escape_markup(run.platform) + "</code>).");
-  body += R"(<nav id=bar><span id=filters>)";
+  // Two views of the same cases: the table (one case opened beside it), and every FAIL, NEW and
+  // ERROR case on one scrolling page.
+  body += fmt::format(
+      "<nav id=bar><span id=views><button data-view=table class=on>table</button> <button "
+      "data-view=failures>failures on one page (<span id=failing>{}</span>)</button></span> "
+      "<span id=filters>",
+      n.fail + n.fresh + n.error);
   for (const char* st : {"ERROR", "FAIL", "NEW", "FLAKY", "PASS"}) {
     int count_of = 0;
     for (const CaseResult& c : run.cases) count_of += status_name(c.status) == st;
@@ -302,17 +292,18 @@ void write_html_report(const RunResults& run, const fs::path& report_dir,
         R"(<label class={0}><input type=checkbox data-status={0} checked> {0} ({1})</label> )", st,
         count_of);
   }
+  // The approve bar stays at the top of the window however far either view is scrolled.
   body +=
       "</span><input id=search type=search placeholder=\"filter: id, path, message (/)\" "
       "aria-label=filter> <span id=shown></span></nav>\n"
-      "<div id=approve><button id=select-failing>select shown FAIL/NEW</button> <button "
-      "id=select-none>clear</button> <span id=selected>0 selected</span>: <code "
-      "id=command></code> <button id=copy>copy</button> <span id=copied></span></div>\n"
       "<p class=keys>Keys: j/k or ↓/↑ move, n/p next/previous failure, Enter open, Esc close, "
-      "x select, / filter; in a case: f fit, 1 one-to-one, +/− zoom.</p></header>\n";
+      "x select, / filter, v switch view; in a case: f fit, 1 one-to-one, +/− zoom.</p>"
+      "</header>\n<div id=approve><button id=select-failing>select shown FAIL/NEW</button> "
+      "<button id=select-none>clear</button> <span id=selected>0 selected</span>: <code "
+      "id=command></code> <button id=copy>copy</button> <span id=copied></span></div>\n";
   body +=
-      "<main><table id=cases><thead><tr><th></th><th>status</th><th>case</th><th>mismatch "
-      "%</th><th>allowed %</th><th>margin</th><th>max Δ</th><th>time s</th><th>image</th>"
+      "<main><div id=table-view><table id=cases><thead><tr><th></th><th>status</th><th>case</th>"
+      "<th>measured</th><th>limit</th><th>margin</th><th>max Δ</th><th>time s</th><th>image</th>"
       "</tr></thead><tbody></tbody></table>\n<p id=more></p><noscript>This report needs "
       "JavaScript; results.json holds the same.</noscript>\n";
   // Each registered kind with cases here adds its own section (the AO bench: its tables).
@@ -321,7 +312,9 @@ void write_html_report(const RunResults& run, const fs::path& report_dir,
     if (!is_image_kind(c.kind)) kinds.insert(c.kind);
   for (const std::string& name : kinds)
     if (const CaseKind* kind = find_kind(name)) body += kind->report_section(run, report_dir);
-  body += "</main><aside id=detail hidden></aside>\n";
+  body +=
+      "</div><div id=failures-view hidden><div id=failures></div><p id=failures-more></p></div>"
+      "</main><aside id=detail hidden></aside>\n";
   const std::string page = fmt::format(
       "<!doctype html>\n<html lang=en><head><meta charset=utf-8><title>aosuite: {}</title>"
       "<style>{}</style></head><body>\n{}<script type=\"application/json\" id=meta>{}</script>"

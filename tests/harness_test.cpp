@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <fstream>
 #include <functional>
 
@@ -12,6 +13,7 @@
 #include "harness/goldens.hpp"
 #include "harness/html_report.hpp"
 #include "harness/judge.hpp"
+#include "harness/report_images.hpp"
 #include "harness/results.hpp"
 #include "harness/runner.hpp"
 #include "harness/suite_file.hpp"
@@ -488,6 +490,30 @@ TEST(Results, RoundTripThroughJson) {
   EXPECT_EQ(flaky.cases[0].status, Status::kFlaky);
   EXPECT_EQ(count(flaky).flaky, 1);
   EXPECT_EQ(exit_code(count(flaky)), 0);  // flaky cases passed in the end
+}
+
+// A float image as the report's preview draws it: linear light clamped to [0, 1] and
+// sRGB-encoded (NaN black), sRGB-encoded floats (16-bit) clamped only, one channel as grey.
+TEST(ReportImages, FloatPicturesAreClampedAndSrgbEncodedForTheScreen) {
+  Picture p;
+  p.is_float = true;
+  p.floats = {.width = 3,
+              .height = 1,
+              .channels = 3,
+              .data = {0.5f, 0.0f, 1.5f, -1.0f, std::nanf(""), 0.002f, 1.0f, 0.2f, 0.0f}};
+  const auto px = [](const RgbaImage& img, int x) {
+    const unsigned char* q = img.data() + 4 * x;
+    return std::vector<int>{q[0], q[1], q[2], q[3]};
+  };
+  const RgbaImage shown = display_rgba8(p);
+  ASSERT_EQ(shown.width(), 3);
+  EXPECT_EQ(px(shown, 0), (std::vector<int>{188, 0, 255, 255}));  // 0.7354 of 255
+  EXPECT_EQ(px(shown, 1), (std::vector<int>{0, 0, 7, 255}));      // 0.002 * 12.92 of 255
+  EXPECT_EQ(px(shown, 2), (std::vector<int>{255, 124, 0, 255}));
+  p.floats.srgb = true;
+  EXPECT_EQ(px(display_rgba8(p), 0), (std::vector<int>{128, 0, 255, 255}));
+  p.floats = {.width = 1, .height = 1, .channels = 1, .data = {0.2f}};
+  EXPECT_EQ(px(display_rgba8(p), 0), (std::vector<int>{124, 124, 124, 255}));
 }
 
 TEST(Escape, MarkupCharactersAreEscaped) {

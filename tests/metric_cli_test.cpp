@@ -21,6 +21,7 @@
 
 #include "compare/metric.hpp"
 #include "compare/opencv.hpp"
+#include "exr_fixture.hpp"
 #include "png_fixture.hpp"
 #include "process.hpp"
 
@@ -29,20 +30,11 @@ namespace {
 
 namespace fs = std::filesystem;
 using test::Outcome;
+using test::write_exr;
 const fs::path kSource = AOSUITE_SOURCE_DIR;
 
 Outcome compare(const test::TempDir& dir, const std::string& args) {
   return test::run_shell(std::string(AOSUITE_BIN) + " compare " + args, dir.path());
-}
-
-// A float image of `channels` named channels, written with OpenImageIO as EXR.
-void write_exr(const fs::path& path, int w, int h, const std::vector<std::string>& channels,
-               const std::vector<float>& pixels) {
-  OIIO::ImageSpec spec(w, h, int(channels.size()), OIIO::TypeDesc::FLOAT);
-  spec.channelnames = channels;
-  auto out = OIIO::ImageOutput::create(path.string());
-  ASSERT_TRUE(out && out->open(path.string(), spec) &&
-              out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()) && out->close());
 }
 
 // An RGB float EXR whose data window starts at (x0, y0), written with OpenEXR itself (OpenImageIO

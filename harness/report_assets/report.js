@@ -1,6 +1,7 @@
 // The report's behaviour: filter by status and text, keyboard navigation, one case opened
-// beside the table (golden / new / diff, swap, slider, zoom, 1:1), and the bless command for
-// the cases selected. Works from disk: no network, no external scripts, no server.
+// beside the table (golden / new / diff, swap, slider, zoom, 1:1), every failure on one page,
+// and the bless command for the cases selected. Works from disk: no network, no external
+// scripts, no server.
 (function () {
   "use strict";
   const $ = (id) => document.getElementById(id);
@@ -28,7 +29,7 @@
       `<td><span class=${c.status}>${c.status}</span></td><td class=id><a href="#case=${esc(encodeURIComponent(c.id))}">${esc(c.id)}</a>` +
       (c.source ? `<div class=src>${esc(c.source)}</div>` : "") +
       (c.status !== "PASS" && c.message ? `<div class=msg>${esc(c.message)}</div>` : "") +
-      `</td><td class=num>${esc(c.mismatch)}</td><td class=num>${c.allowed}</td><td class=num>${esc(c.margin)}</td>` +
+      `</td><td class=num>${esc(c.measured)}</td><td class=num>${esc(c.limit)}</td><td class=num>${esc(c.margin)}</td>` +
       `<td class=num>${esc(c.delta)}</td><td class=num>${c.seconds.toFixed(2)}</td><td>${thumb}</td></tr>`;
   }
   function drawTo(count) {
@@ -55,6 +56,7 @@
     drawTo(CHUNK);
     if (current >= 0 && rowOf.has(current)) rowOf.get(current).classList.add("cur");
     $("shown").textContent = view.length + " of " + data.length + " shown";
+    listFailures();
   }
   for (const box of document.querySelectorAll("#filters input")) box.addEventListener("change", applyFilter);
   $("search").addEventListener("input", applyFilter);
@@ -94,8 +96,7 @@
   function select(i, on) {
     if (data[i].status === "ERROR") return;
     on ? selected.add(i) : selected.delete(i);
-    const tr = rowOf.get(i);
-    if (tr) tr.querySelector("input").checked = on;
+    for (const at of [rowOf.get(i), blockOf.get(i)]) if (at) at.querySelector("input").checked = on;
   }
   $("select-failing").addEventListener("click", () => {
     for (const i of view) if (data[i].status === "FAIL" || data[i].status === "NEW") select(i, true);
@@ -123,21 +124,27 @@
   // --- one case beside the table -----------------------------------------------------------
   let current = -1, zoom = 0; // zoom 0: fit; else a factor of the natural size
   const detail = $("detail");
-  // Browsers show no EXR: such an image is a link to its file.
-  const fig = (src, cls, caption) =>
-    !src ? "" : src.endsWith(".exr")
-      ? `<figure><a href="${esc(url(src))}">${esc(src.split("/").pop())}</a><figcaption>${esc(caption)} (EXR)</figcaption></figure>`
-      : `<figure><img class="${cls}" src="${esc(url(src))}" alt="${esc(caption)}"><figcaption>${esc(caption)}</figcaption></figure>`;
-  function imageHtml(c, v) {
+  // A picture and its caption; `file`, when given, is the image itself (an EXR), of which `src`
+  // is the PNG preview: linked beside it. A picture that cannot be loaded says so.
+  const fig = (src, caption, file) =>
+    !src && !file ? "" : `<figure>${src ? `<img src="${esc(url(src))}" alt="${esc(caption)}">` : ""}` +
+      `<figcaption>${esc(caption)}${file ? ` — <a href="${esc(file)}">${esc(file.split("/").pop())}</a>${src ? " (sRGB preview)" : ""}` : ""}</figcaption></figure>`;
+  document.addEventListener("error", (e) => {
+    const fail = e.target.closest && e.target.closest("figure");
+    if (fail && e.target.tagName === "IMG") fail.classList.add("missing");
+  }, true);
+  // An image's verdict and pictures; `brief` (the page of failures) leaves out the gates' table
+  // (its message names the failing ones), the swap and the slider.
+  function imageHtml(c, v, brief) {
     const resemble = c.resemble ? ` ${esc(v.mismatch || "-")}% (allowed ${c.allowed}%), max channel Δ ${v.delta}` : "";
     let h = `<h3>${esc(v.image)} — <span class="${v.status}">${v.status}</span>${resemble}${v.identical ? ", byte-identical" : ""}</h3>`;
     if (v.message) h += `<p>${esc(v.message)}</p>`;
-    if (v.gates.length) {
+    if (!brief && v.gates.length) {
       h += "<table class=gates><tr><th>gate</th><th>value</th><th>limit</th><th>margin</th></tr>" +
         v.gates.map((g) => `<tr class="${g.pass ? "PASS" : "FAIL"}"><td>${esc(g.gate)}</td><td class=num>${esc(g.value)}</td><td class=num>${esc(g.limit)}</td><td class=num>${esc(g.margin)}</td></tr>`).join("") + "</table>";
     }
-    h += `<div class=images>${fig(v.golden, "", "golden")}${fig(v.new, "", "new")}${fig(v.diff, "", "diff")}${fig(v.heat, "", "FLIP error (magma)")}${fig(v.regions, "", "region map")}`;
-    if (v.golden && v.new && !v.identical && !v.new.endsWith(".exr")) {
+    h += `<div class=images>${fig(v.golden, "golden", v.golden_file)}${fig(v.new, "new", v.new_file)}${fig(v.diff, "diff")}${fig(v.heat, "FLIP error (magma)")}${fig(v.regions, "region map")}`;
+    if (!brief && v.golden && v.new && !v.identical) {
       h += `<figure><div class=swap><img class=golden src="${esc(url(v.golden))}" alt=golden><img class=new src="${esc(url(v.new))}" alt=new></div><figcaption>golden; hover for new</figcaption></figure>`;
       h += `<figure><div class=slider><img src="${esc(url(v.golden))}" alt=golden><img class=top src="${esc(url(v.new))}" alt=new><input type=range min=0 max=100 value=50 aria-label="new vs golden"></div><figcaption>slider: new (left) over golden</figcaption></figure>`;
     }
@@ -147,6 +154,7 @@
     "<table>" + Object.keys(o).map((k) => `<tr><th>${esc(k)}</th><td>${esc(o[k])}</td></tr>`).join("") + "</table>";
   function open(i) {
     if (i < 0 || i >= data.length) return;
+    if (onePage) return goToBlock(i);
     if (rowOf.has(current)) rowOf.get(current).classList.remove("cur");
     current = i;
     const at = view.indexOf(i);
@@ -191,12 +199,14 @@
       img.complete ? apply() : img.addEventListener("load", apply, { once: true });
     }
   }
-  // The next case of the filtered list after (dir 1) or before (dir -1) `from` that `want`s.
+  // The next case of the list shown (the filtered table, or the page of failures) after (dir 1)
+  // or before (dir -1) `from` that `want`s.
   function step(from, dir, want) {
-    let at = view.indexOf(from);
-    if (at < 0) at = dir > 0 ? -1 : view.length;
-    for (let k = at + dir; k >= 0 && k < view.length; k += dir) {
-      if (want(data[view[k]])) return view[k];
+    const list = onePage ? listed : view;
+    let at = list.indexOf(from);
+    if (at < 0) at = dir > 0 ? -1 : list.length;
+    for (let k = at + dir; k >= 0 && k < list.length; k += dir) {
+      if (want(data[list[k]])) return list[k];
     }
     return -1;
   }
@@ -219,6 +229,7 @@
       case "Escape": close(); break;
       case "x": case " ": if (current >= 0) { select(current, !selected.has(current)); updateCommand(); } break;
       case "/": $("search").focus(); break;
+      case "v": showView(!onePage); break;
       case "f": setZoom(0); break;
       case "1": setZoom(1); break;
       case "+": case "=": setZoom(Math.min(16, (zoom || 1) * 2)); break;
@@ -230,8 +241,80 @@
   }
   document.addEventListener("keydown", onKey);
 
-  // --- start: #select=id,id preselects; #case=id opens one, else the first failure; #keys=...
-  // then presses those keys (a link to "the third failure" is #keys=nnn) -------------------
+  // --- every FAIL, NEW and ERROR case that passes the filter on one scrolling page: each with
+  // its id, a box to select it, and its failing images' verdicts and pictures -----------------
+  let onePage = false;
+  let listed = []; // indices into data: the failing ones of `view`
+  let listedDrawn = 0;
+  const blockOf = new Map(); // index into data -> its <article>, once drawn
+  const failures = $("failures"), failuresMore = $("failures-more");
+  const BLOCKS = 20;
+  function blockHtml(i) {
+    const c = data[i];
+    let h = `<article data-i=${i}><h2><input type=checkbox aria-label=select${c.status === "ERROR" ? " disabled" : ""}${selected.has(i) ? " checked" : ""}> ` +
+      `<a href="#case=${esc(encodeURIComponent(c.id))}">${esc(c.id)}</a> <span class="${c.status}">${c.status}</span></h2>`;
+    const shown = c.images.filter((v) => v.status !== "PASS");
+    if (c.message && !shown.length) h += `<p>${esc(c.message)}</p>`; // else each image says why
+    if (c.stderr) h += `<details><summary>stderr</summary><pre>${esc(c.stderr)}</pre></details>`;
+    for (const v of shown) h += imageHtml(c, v, true);
+    return h + "</article>";
+  }
+  function drawBlocksTo(count) {
+    count = Math.min(count, listed.length);
+    if (count > listedDrawn) {
+      failures.insertAdjacentHTML("beforeend", listed.slice(listedDrawn, count).map(blockHtml).join(""));
+      for (const art of Array.from(failures.children).slice(listedDrawn)) blockOf.set(+art.dataset.i, art);
+      listedDrawn = count;
+    }
+    failuresMore.textContent = listedDrawn < listed.length ? `${listed.length - listedDrawn} more below` : listed.length ? "" : "No FAIL, NEW or ERROR case is shown.";
+  }
+  function listFailures() {
+    listed = view.filter((i) => failing(data[i].status));
+    $("failing").textContent = listed.length;
+    failures.textContent = "";
+    blockOf.clear();
+    listedDrawn = 0;
+    if (onePage) drawBlocksTo(BLOCKS);
+  }
+  function goToBlock(i) {
+    const at = listed.indexOf(i);
+    if (at < 0) return;
+    if (at >= listedDrawn) drawBlocksTo(at + BLOCKS);
+    if (blockOf.has(current)) blockOf.get(current).classList.remove("cur");
+    current = i;
+    blockOf.get(i).classList.add("cur");
+    blockOf.get(i).scrollIntoView({ block: "start" });
+  }
+  function showView(all) {
+    close();
+    onePage = all;
+    $("table-view").hidden = all;
+    $("failures-view").hidden = !all;
+    for (const b of document.querySelectorAll("#views button")) b.classList.toggle("on", (b.dataset.view === "failures") === all);
+    listFailures();
+    if (all && listed.includes(current)) goToBlock(current); // the case looked at stays in sight
+    history.replaceState(null, "", all ? "#view=failures" : "#");
+  }
+  for (const b of document.querySelectorAll("#views button")) b.addEventListener("click", () => showView(b.dataset.view === "failures"));
+  new IntersectionObserver((seen) => {
+    if (onePage && seen.some((e) => e.isIntersecting)) drawBlocksTo(listedDrawn + BLOCKS);
+  }).observe(failuresMore);
+  failures.addEventListener("change", (e) => {
+    if (e.target.tagName !== "INPUT") return;
+    select(+e.target.closest("article").dataset.i, e.target.checked);
+    updateCommand();
+  });
+  failures.addEventListener("click", (e) => {
+    if (e.target.tagName !== "A" || !e.target.closest("h2")) return;
+    e.preventDefault(); // the case's id opens it in the table view, beside the table
+    const i = +e.target.closest("article").dataset.i;
+    showView(false);
+    open(i);
+  });
+
+  // --- start: #select=id,id preselects; #view=failures shows the page of failures; #case=id
+  // opens one, else the first failure; #keys=... then presses those keys (a link to "the third
+  // failure" is #keys=nnn) -----------------------------------------------------------------
   const hash = decodeURIComponent(location.hash.slice(1));
   const index = new Map(data.map((c, i) => [c.id, i]));
   if (hash.startsWith("select=")) {
@@ -239,7 +322,8 @@
   }
   applyFilter();
   updateCommand();
-  if (hash.startsWith("case=") && index.has(hash.slice(5))) open(index.get(hash.slice(5)));
+  if (hash === "view=failures") showView(true);
+  else if (hash.startsWith("case=") && index.has(hash.slice(5))) open(index.get(hash.slice(5)));
   else if (data.length && failing(data[0].status)) open(0);
   if (hash.startsWith("keys=")) {
     for (const key of hash.slice(5)) onKey({ key, target: document.body, preventDefault() {} });

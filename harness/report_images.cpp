@@ -1,0 +1,146 @@
+#include "harness/report_images.hpp"
+
+#include <fmt/format.h>
+#include <xxhash.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+
+#include "common/file_io.hpp"
+#include "compare/srgb.hpp"
+#include "harness/results.hpp"
+#include "image/image_file.hpp"
+#include "image/image_io.hpp"
+
+namespace aosuite::harness {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// The formats every browser draws in an <img>; any other image gets a preview.
+bool browser_shows(const fs::path& file) {
+  std::string ext = file.extension().string();
+  std::ranges::transform(ext, ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  return ext == ".png" || ext == ".jpg" || ext == ".jpeg" || ext == ".webp" || ext == ".bmp";
+}
+
+// Whether `name` is `stem`.<16 hex digits>.png: a preview of the file `stem`, of any bytes.
+bool is_preview_of(const std::string& name, const std::string& stem) {
+  const std::size_t hex = stem.size() + 1;
+  if (name.size() != hex + 16 + 4 || !name.starts_with(stem + ".") || !name.ends_with(".png"))
+    return false;
+  return std::all_of(name.begin() + long(hex), name.end() - 4,
+                     [](unsigned char c) { return std::isxdigit(c); });
+}
+
+// Removes the previews of `file` other than `keep`, and their thumbnails: what an earlier
+// version of the image left.
+void remove_old_previews(const fs::path& file, const std::string& keep) {
+  const std::string stem = file.filename().string();
+  std::error_code ec;
+  for (const fs::directory_entry& e : fs::directory_iterator(file.parent_path(), ec)) {
+    const std::string name = e.path().filename().string();
+    const std::string shown = name.starts_with("thumb_") ? name.substr(6) : name;
+    if (shown != keep && is_preview_of(shown, stem) && fs::is_regular_file(e.symlink_status(ec)))
+      fs::remove(e.path(), ec);
+  }
+}
+
+unsigned char byte_of(float encoded) {
+  return static_cast<unsigned char>(std::lround(std::clamp(encoded, 0.0f, 1.0f) * 255.0f));
+}
+
+}  // namespace
+
+bool inside(const fs::path& dir, const std::string& rel) {
+  std::error_code ec;
+  const fs::path r = fs::path(rel).lexically_normal();
+  return !rel.empty() && r.is_relative() && !r.empty() && *r.begin() != ".." &&
+         fs::is_regular_file(fs::symlink_status(dir / r, ec));
+}
+
+RgbaImage display_rgba8(const Picture& p) {
+  if (!p.is_float) return p.rgba;
+  const FloatImage& f = p.floats;
+  RgbaImage out(f.width, f.height);
+  for (int y = 0; y < f.height; ++y) {
+    const float* in = f.row(y);
+    unsigned char* px = out.data() + 4 * std::size_t(y) * std::size_t(f.width);
+    for (int x = 0; x < f.width; ++x, px += 4) {
+      for (int k = 0; k < 3; ++k) {
+        float v =
+            in[std::size_t(x) * std::size_t(f.channels) + std::size_t(f.channels == 3 ? k : 0)];
+        if (std::isnan(v)) v = 0;  // a NaN sample is black, not whatever a cast makes of it
+        px[k] = byte_of(f.srgb ? v : linear_to_srgb(v));
+      }
+      px[3] = 255;
+    }
+  }
+  return out;
+}
+
+std::string shown_image(const fs::path& dir, const std::string& rel) {
+  if (!inside(dir, rel)) return "";
+  if (browser_shows(rel)) return rel;
+  const fs::path file = dir / rel;
+  try {
+    const std::vector<unsigned char> bytes = read_file(file, kMaxFileBytes);
+    const std::string name = fmt::format("{}.{:016x}.png", file.filename().string(),
+                                         XXH3_64bits(bytes.data(), bytes.size()));
+    const std::string out = (fs::path(rel).parent_path() / name).string();
+    if (inside(dir, out)) return out;  // named by these bytes: made from them
+    const RgbaImage shown = display_rgba8(decode_picture(bytes, file.string(), kMaxFileBytes));
+    write_report_file(file.parent_path() / name, encode_png_rgba8(shown, 6));
+    remove_old_previews(file, name);
+    return out;
+  } catch (const std::exception&) {
+    return "";  // an unreadable image gets no preview; the page links the file and says why
+  }
+}
+
+constexpr int kThumbW = 160, kThumbH = 120;
+std::string thumbnail(const fs::path& dir, const std::string& rel) {
+  if (!inside(dir, rel)) return "";
+  const fs::path file = dir / rel;
+  try {
+    const std::vector<unsigned char> bytes = read_file(file);
+    const ImageSize size = check_png(bytes, file.string());
+    if (size.width <= kThumbW && size.height <= kThumbH) return rel;
+    const std::string name = "thumb_" + file.filename().string();
+    const fs::path thumb = file.parent_path() / name;
+    std::error_code ec;
+    if (fs::exists(thumb, ec) && fs::last_write_time(thumb, ec) >= fs::last_write_time(file, ec)) {
+      return fs::path(rel).parent_path().string() + "/" + name;
+    }
+    const RgbaImage img = decode_png(bytes, file.string());
+    const int w = img.width(), h = img.height();
+    const int f = std::max((w + kThumbW - 1) / kThumbW, (h + kThumbH - 1) / kThumbH);
+    RgbaImage small((w + f - 1) / f, (h + f - 1) / f);
+    // Each thumbnail pixel: the rounded mean of the f x f block it covers.
+    for (int y = 0; y < small.height(); ++y) {
+      for (int x = 0; x < small.width(); ++x) {
+        int sum[4] = {0, 0, 0, 0}, count = 0;
+        for (int yy = y * f; yy < std::min(h, (y + 1) * f); ++yy) {
+          for (int xx = x * f; xx < std::min(w, (x + 1) * f); ++xx) {
+            const unsigned char* p = img.view().row(yy) + 4 * xx;
+            for (int k = 0; k < 4; ++k) sum[k] += p[k];
+            ++count;
+          }
+        }
+        unsigned char* out =
+            small.data() + 4 * (std::size_t(y) * std::size_t(small.width()) + std::size_t(x));
+        for (int k = 0; k < 4; ++k)
+          out[k] = static_cast<unsigned char>((sum[k] + count / 2) / count);
+      }
+    }
+    const std::vector<unsigned char> png = encode_png_rgba8(small, 6);
+    write_report_file(thumb, png);
+    return fs::path(rel).parent_path().string() + "/" + name;
+  } catch (const std::exception&) {
+    return "";  // an unreadable image gets no thumbnail; the case still shows why
+  }
+}
+
+}  // namespace aosuite::harness

@@ -1,0 +1,35 @@
+// The pictures the report draws beside its data, made from the images its cases keep: a PNG
+// preview of each image a browser cannot show (EXR, Radiance HDR, TIFF, Targa), and
+// thumbnails. Both are written beside the image they show, inside the report's case folders
+// only (never into a goldens folder), and only for images the report shows.
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+#include "image/picture.hpp"
+
+namespace aosuite::harness {
+
+// Whether `rel` names a plain file inside `dir` (no link, no ..): a report never shows
+// anything else on the machine.
+bool inside(const std::filesystem::path& dir, const std::string& rel);
+
+// A picture as a screen shows it, 8-bit sRGB RGBA: 8-bit images as they are; float ones
+// clamped to [0, 1] (NaN as 0) and, when linear (EXR, HDR, float TIFF), sRGB-encoded, with no
+// other tone mapping, so a value of 1 and above is white; one channel as grey.
+RgbaImage display_rgba8(const Picture& p);
+
+// What the page shows for the image `rel` (relative to `dir`): `rel` itself when a browser
+// shows its format, else its PNG preview beside it, `<file name>.<hash>.png`, named by the
+// hash of the image's bytes: an image that changes (a later run, a bless, a copied report)
+// gets a preview of its own, and the old one is removed. Empty when `rel` is no plain file
+// inside `dir` or cannot be read.
+std::string shown_image(const std::filesystem::path& dir, const std::string& rel);
+
+// A thumbnail of the PNG `rel` (relative to `dir`) at most 160x120: the image itself when it is
+// that small, else thumb_<name> beside it (made again when older than it). Empty when `rel`
+// cannot be read.
+std::string thumbnail(const std::filesystem::path& dir, const std::string& rel);
+
+}  // namespace aosuite::harness

@@ -1,0 +1,179 @@
+// What the report shows, as a reviewer sees it in headless Chromium at 1280x720: float (EXR)
+// images as pictures, through PNG previews beside them in the report folder, made again when
+// the EXR changes; a metric-gated row in its gate's own units; and every failure on one page,
+// golden | new | diff side by side, whose boxes feed the approve bar's bless command.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <regex>
+
+#include "compare/opencv.hpp"
+#include "exr_fixture.hpp"
+#include "png_fixture.hpp"
+#include "process.hpp"
+
+namespace aosuite {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A float value as the preview shows it: sRGB-encoded, in 8 bits.
+unsigned char srgb8(double linear) {
+  return static_cast<unsigned char>(std::lround(255 * (1.055 * std::pow(linear, 1 / 2.4) - 0.055)));
+}
+
+class ReportView : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    for (const char* d : {"actual", "expected"}) fs::create_directories(dir_ / d);
+    // chart.png: half its rows turn green. ao.exr: one grey channel, 12x9, 0.2 -> 0.6.
+    cv::Mat red(6, 8, CV_8UC4, cv::Scalar(255, 0, 0, 255));
+    write_png_rgba8(dir_ / "expected" / "chart.png", red);
+    red.rowRange(0, 3).setTo(cv::Scalar(0, 255, 0, 255));
+    write_png_rgba8(dir_ / "actual" / "chart.png", red);
+    grey("expected", 0.2f);
+    grey("actual", 0.6f);
+  }
+  void grey(const char* folder, float value) {
+    test::write_exr(dir_ / folder / "ao.exr", 12, 9, {"Y"}, std::vector<float>(12 * 9, value));
+  }
+  test::Outcome check() {
+    return test::run_shell("cd " + dir_.path().string() + " && " + AOSUITE_BIN +
+                               " check --actual actual --expected expected --report rep"
+                               " --gate flip.max_mean=0.05",
+                           dir_.path());
+  }
+  // The page's data: its cases in the report's order.
+  nlohmann::json data() const {
+    const std::string html = test::read_text(dir_ / "rep" / "index.html");
+    const std::string tag = "<script type=\"application/json\" id=data>";
+    const std::size_t d0 = html.find(tag) + tag.size();
+    return nlohmann::json::parse(html.substr(d0, html.find("</script>", d0) - d0));
+  }
+  static const nlohmann::json& by_id(const nlohmann::json& cases, const std::string& id) {
+    for (const nlohmann::json& c : cases)
+      if (c.at("id") == id) return c;
+    throw std::runtime_error("no case " + id);
+  }
+  // The page as Chromium draws it at 1280x720 after `hash`, images loaded.
+  std::string dom(const std::string& hash) {
+    const test::Outcome r = test::run_shell(
+        "chromium --headless --no-sandbox --disable-gpu --window-size=1280,720 "
+        "--virtual-time-budget=5000 --dump-dom 'file://" +
+            (dir_ / "rep" / "index.html").string() + hash + "'",
+        dir_.path());
+    EXPECT_EQ(r.rc, 0) << r.err;
+    return r.out;
+  }
+  test::TempDir dir_;
+};
+
+TEST_F(ReportView, ExrImagesAreShownThroughPngPreviews) {
+  const test::Outcome r = check();
+  ASSERT_EQ(r.rc, 1) << r.out << r.err;
+  const nlohmann::json cases = data();
+  ASSERT_EQ(cases.size(), 2u);
+  const nlohmann::json& exr = by_id(cases, "ao.exr");
+  const nlohmann::json& image = exr.at("images").at(0);
+
+  // Golden and new are shown as PNG previews named by the EXR's bytes, in the report's case
+  // folder, each linking its EXR: sRGB-encoded grey at the EXR's size.
+  const std::regex preview(R"(cases/ao\.exr/(golden_)?image\.exr\.[0-9a-f]{16}\.png)");
+  for (const auto& [role, value] : {std::pair{"golden", 0.2}, std::pair{"new", 0.6}}) {
+    SCOPED_TRACE(role);
+    const std::string shown = image.at(role);
+    EXPECT_TRUE(std::regex_match(shown, preview)) << shown;
+    EXPECT_EQ(
+        image.at(std::string(role) + "_file"),
+        std::string("cases/ao.exr/") + (role == std::string("new") ? "" : "golden_") + "image.exr");
+    const cv::Mat png = read_png_rgba8(dir_ / "rep" / shown);
+    ASSERT_EQ(png.cols, 12);
+    ASSERT_EQ(png.rows, 9);
+    const unsigned char v = srgb8(value);
+    EXPECT_EQ(png.at<cv::Vec4b>(4, 6), cv::Vec4b(v, v, v, 255));
+  }
+  EXPECT_EQ(exr.at("thumb"), image.at("new"));
+  EXPECT_EQ(by_id(cases, "chart.png").at("images").at(0).at("new_file"), "");
+  for (const fs::directory_entry& e : fs::recursive_directory_iterator(dir_ / "expected"))
+    EXPECT_TRUE(e.path().filename() == "ao.exr" || e.path().filename() == "chart.png")
+        << e.path() << ": nothing is written beside the goldens";
+
+  // The case opened: both previews drawn as pictures that load, each EXR linked.
+  const std::string panel = dom("#case=ao.exr");
+  for (const char* role : {"golden", "new"})
+    EXPECT_NE(panel.find("<img src=\"" + image.at(role).get<std::string>() + "\""),
+              std::string::npos)
+        << role;
+  EXPECT_NE(panel.find("<a href=\"cases/ao.exr/image.exr\">image.exr</a>"), std::string::npos);
+  EXPECT_EQ(panel.find("<figure class=\"missing\">"), std::string::npos)
+      << "a picture did not load";
+}
+
+// A FLIP-gated row shows FLIP's own value, limit and margin, not a mismatch percentage.
+TEST_F(ReportView, AMetricGatedRowShowsItsGatesOwnUnits) {
+  ASSERT_EQ(check().rc, 1);
+  const nlohmann::json cases = data();
+  const nlohmann::json& exr = by_id(cases, "ao.exr");
+  const nlohmann::json& flip = exr.at("images").at(0).at("gates").at(0);
+  EXPECT_EQ(exr.at("measured"), "flip mean " + flip.at("value").get<std::string>());
+  EXPECT_EQ(exr.at("limit"), "≤ 0.05");
+  EXPECT_EQ(exr.at("margin"), flip.at("margin"));
+  EXPECT_TRUE(flip.at("margin").get<std::string>().starts_with("-"));
+  EXPECT_NE(dom("").find("<td class=\"num\">≤ 0.05</td>"), std::string::npos);
+}
+
+// The page of failures: both cases, golden | new | diff and FLIP's map of each as pictures that
+// load, the EXRs linked, the failing gate in words; its boxes feed the approve bar. Keys: v
+// (that page), n (its second case), x (select it).
+TEST_F(ReportView, EveryFailureIsOnOnePageAndCanBeSelected) {
+  ASSERT_EQ(check().rc, 1);
+  const nlohmann::json cases = data();
+  ASSERT_EQ(cases.size(), 2u);
+  const std::string page = dom("#keys=vnx");
+  EXPECT_NE(page.find("<div id=\"table-view\" hidden=\"\">"), std::string::npos);
+  EXPECT_NE(page.find("<div id=\"failures-view\">"), std::string::npos);
+  for (const nlohmann::json& c : cases) {
+    const std::string id = c.at("id");
+    EXPECT_NE(page.find(">" + id + "</a> <span class=\"FAIL\">FAIL</span>"), std::string::npos)
+        << id;
+    const nlohmann::json& v = c.at("images").at(0);
+    std::vector<std::string> roles = {"golden", "new", "heat"};
+    if (id == "chart.png") roles.push_back("diff");  // Resemble's diff: 8-bit images only
+    for (const std::string& role : roles) {
+      const std::string src = v.at(role);
+      EXPECT_NE(page.find("<img src=\"" + src + "\""), std::string::npos) << id << " " << role;
+    }
+    const std::string gate = v.at("gates").at(0).at("value");
+    EXPECT_NE(page.find("<p>flip mean " + gate + " &gt; 0.05</p>"), std::string::npos) << id;
+  }
+  EXPECT_NE(page.find("<a href=\"cases/ao.exr/image.exr\">image.exr</a>"), std::string::npos);
+  EXPECT_EQ(page.find("<figure class=\"missing\">"), std::string::npos) << "a picture did not load";
+  const std::string second =
+      std::regex_replace(cases.at(1).at("id").get<std::string>(), std::regex(R"(\.)"), R"(\.)");
+  EXPECT_NE(page.find("--filter '^" + second + "$'</code>"), std::string::npos) << page;
+  EXPECT_NE(page.find("data-copy-covered=\"false\""), std::string::npos);
+}
+
+// A preview belongs to the bytes it was made from: when the EXR changes (the same path, the
+// report folder's cache in use), the page shows a new preview of the new bytes and the old one
+// is gone.
+TEST_F(ReportView, APreviewIsMadeAgainWhenItsExrChanges) {
+  ASSERT_EQ(check().rc, 1);
+  const std::string before = by_id(data(), "ao.exr").at("images").at(0).at("new");
+  grey("actual", 0.7f);
+  ASSERT_EQ(check().rc, 1);
+  const std::string after = by_id(data(), "ao.exr").at("images").at(0).at("new");
+  EXPECT_NE(after, before);
+  EXPECT_FALSE(fs::exists(dir_ / "rep" / before));
+  const unsigned char v = srgb8(0.7);
+  EXPECT_EQ(read_png_rgba8(dir_ / "rep" / after).at<cv::Vec4b>(0, 0), cv::Vec4b(v, v, v, 255));
+  // Unchanged, it is reused as it is.
+  const auto written = fs::last_write_time(dir_ / "rep" / after);
+  ASSERT_EQ(check().rc, 1);
+  EXPECT_EQ(by_id(data(), "ao.exr").at("images").at(0).at("new"), after);
+  EXPECT_EQ(fs::last_write_time(dir_ / "rep" / after), written);
+}
+
+}  // namespace
+}  // namespace aosuite
