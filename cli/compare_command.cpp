@@ -152,7 +152,7 @@ rs::Options options_from(const CompareArgs& args) {
   return o;
 }
 
-// The verdict of compare::decide, with Resemble.js's own rule as the default allowance:
+// verdict::decide with Resemble.js's own rule as the default allowance:
 // mismatch <= --threshold on images of one size, and no channel limit.
 verdict::Verdict decide(const std::optional<rs::Result>& r, double threshold, const MetricRun& m) {
   std::optional<verdict::ResembleFigures> figures;
