@@ -39,11 +39,9 @@ else
 fi
 
 start=$SECONDS
-launcher=()
-if command -v ccache >/dev/null; then launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache); fi
 mkdir -p "$build"
 cmake -S "$src" -B "$build" -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DAOSUITE_FUZZ=ON -DAOSUITE_BUILD_TESTS=OFF -DAOSUITE_BUILD_BENCH=OFF "${launcher[@]}" \
+  -DAOSUITE_FUZZ=ON -DAOSUITE_BUILD_TESTS=OFF -DAOSUITE_BUILD_BENCH=OFF \
   >"$build/fuzz-configure.log" 2>&1 || { tail -n 30 "$build/fuzz-configure.log" >&2; exit 1; }
 cmake --build "$build" -j "$(nproc)" --target "${targets[@]}" >"$build/fuzz-build.log" 2>&1 ||
   { tail -n 60 "$build/fuzz-build.log" >&2; exit 1; }

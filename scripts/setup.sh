@@ -8,6 +8,8 @@ PACKAGES=(
   g++ cmake make pkg-config
   # dpkg-shlibdeps: `cpack -G DEB` names the packages the .deb depends on (install_package test).
   dpkg-dev
+  # ccache: the test tier's second builds reuse the main build's objects (CMakeLists.txt).
+  ccache
   libspng-dev libisal-dev libopencv-core-dev libfmt-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev libbenchmark-dev
   libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri libglm-dev libopenimageio-dev libopenexr-dev
