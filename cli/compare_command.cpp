@@ -37,7 +37,7 @@ struct CompareArgs {
   std::string a, b, batch, diff, mode = "default", tolerance, error_type = "flat", error_color,
                                  ignore_color, canvas_alpha = "none";
   std::vector<std::string> bounding_boxes, ignored_boxes, metrics, gates;
-  std::string heatmap;
+  std::string heatmap, flip_pooling = "exact";
   std::string large_image_threshold = "1200", return_early = "0", transparency = "1",
               threshold = "0", memory_limit = "1024";
   bool json = false;
@@ -282,9 +282,15 @@ void add_verdict(const MetricPlan& plan, const verdict::Verdict& v, nlohmann::or
   out["failed_gates"] = v.failed;
 }
 
+MetricPlan plan_of(const CompareArgs& args, const std::string& heatmap) {
+  MetricPlan plan = plan_metrics(args.metrics, args.gates, heatmap);
+  plan.flip_tool_pooling = args.flip_pooling == "tool";
+  return plan;
+}
+
 // Metrics first: their errors (sizes, kinds) come before Resemble writes its diff image.
 int run_single(const CompareArgs& args) {
-  const MetricPlan plan = plan_metrics(args.metrics, args.gates, args.heatmap);
+  const MetricPlan plan = plan_of(args, args.heatmap);
   const double threshold = number_in(args.threshold, "--threshold", 0, 100);
   const rs::Options options = options_from(args);
   const Budget budget = budget_from(args);
@@ -316,7 +322,7 @@ int run_batch(const CompareArgs& args) {
   const Budget budget = budget_from(args);
   if (!args.heatmap.empty())
     throw std::invalid_argument("--heatmap writes one file: not with --batch");
-  const MetricPlan plan = plan_metrics(args.metrics, args.gates, "");
+  const MetricPlan plan = plan_of(args, "");
   std::ifstream file;
   if (args.batch != "-") {
     file.open(args.batch);
@@ -410,6 +416,11 @@ void add_compare_command(CLI::App& app, int& rc) {
                   "METRIC.KEY=VALUE, all must hold: max/min (the metric's main value), "
                   "max_STAT/min_STAT, allow_nonfinite=true; e.g. flip.max_mean=0.02 (repeatable)");
   cmd->add_option("--heatmap", args->heatmap, "write FLIP's error map (magma) as PNG");
+  cmd->add_option("--flip-pooling", args->flip_pooling,
+                  "exact (double sums) or tool: FLIP's mean and weighted percentiles summed in "
+                  "float as NVlabs' FLIP tool does, printed to its 6 decimals")
+      ->check(CLI::IsMember({"exact", "tool"}))
+      ->capture_default_str();
   cmd->add_option("--diff", args->diff, "write the diff image (Resemble's raw buffer) as PNG");
   cmd->add_option("--threshold", args->threshold, "largest mismatch % still judged the same")
       ->capture_default_str();

@@ -15,6 +15,9 @@ struct MetricPlan {
   bool resemble = true;                // Resemble.js's comparison, as without --metric
   std::vector<metric::Gates> metrics;  // each metric to measure, with its gates (maybe none)
   std::string heatmap;                 // where to write FLIP's error map (magma PNG)
+  // --flip-pooling tool: FLIP pooled as NVlabs' tool does (metric::Request::tool_pooling) and
+  // printed as it prints, 6 decimals.
+  bool flip_tool_pooling = false;
 };
 
 // From --metric NAME (repeatable; "resemble" or a registered metric), --gate METRIC.KEY=VALUE

@@ -39,6 +39,9 @@ struct Request {
   // width * height flags (row-major): when given, means, percentiles and errors cover only the
   // pixels whose flag is non-zero (geometry, not sky); the map still shows every pixel.
   const std::vector<std::uint8_t>* counted = nullptr;
+  // FLIP: pool as NVlabs' tool does, summing in float in its order (`--flip-pooling tool`), to
+  // print its numbers to their 6 decimals; exact (double) sums otherwise.
+  bool tool_pooling = false;
 };
 
 struct Metric {

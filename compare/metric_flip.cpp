@@ -27,14 +27,16 @@ Measurement measure_flip(const Picture& reference, const Picture& test, const Re
   flip::FlipResult f;
   RgbaImage map;
   const bool hdr = reference.is_float && !reference.floats.srgb;
+  flip::Options o;
+  o.tool_float_pooling = request.tool_pooling;
   if (!reference.is_float) {
-    f = flip::compare_ldr(reference.rgba, test.rgba);
+    f = flip::compare_ldr(reference.rgba, test.rgba, o);
   } else {
     const std::vector<float> a = linear_rgb(reference.floats), b = linear_rgb(test.floats);
     const int w = reference.floats.width, h = reference.floats.height;
     const flip::RgbFloatView va{a.data(), w, h, std::size_t(w) * 3};
     const flip::RgbFloatView vb{b.data(), w, h, std::size_t(w) * 3};
-    f = hdr ? flip::compare_hdr(va, vb) : flip::compare_ldr_linear(va, vb);
+    f = hdr ? flip::compare_hdr(va, vb, o) : flip::compare_ldr_linear(va, vb, o);
   }
   if (request.want_map) map = flip::error_map_image(f);
   if (request.counted) {
@@ -42,7 +44,7 @@ Measurement measure_flip(const Picture& reference, const Picture& test, const Re
     for (std::size_t i = 0; i < f.error_map.size(); ++i)
       if ((*request.counted)[i]) f.error_map[kept++] = f.error_map[i];
     f.error_map.resize(kept);
-    flip::pool(f);
+    flip::pool(f, request.tool_pooling);
   }
   Measurement m;
   m.metric = "flip";

@@ -131,6 +131,40 @@ TEST(MetricCli, ReadsThePairsFromFilesAsTheReferenceToolsDo) {
   }
   EXPECT_EQ(checked, ldr + hdr);
   EXPECT_GE(ssim_checked, 80);
+
+  // --flip-pooling tool: each pooled value as NVlabs' tool prints it (6 decimals), on every
+  // pair, in the JSON and in the line for people.
+  const Outcome t = compare(
+      dir, "--batch " + (dir / "batch.jsonl").string() + " --metric flip --flip-pooling tool");
+  ASSERT_EQ(t.rc, 0) << t.err;
+  const auto printed = [](double v) { return fmt::format("{:.6f}", float(v)); };
+  std::istringstream tool_lines(t.out);
+  int tool_checked = 0;
+  for (std::string line; std::getline(tool_lines, line); ++tool_checked) {
+    const auto got = nlohmann::json::parse(line);
+    const std::string name = got.at("id");
+    SCOPED_TRACE(name);
+    const auto& want = expected.at(name).at("flip");
+    for (const auto& [key, tool_key] :
+         {std::pair{"mean", "mean"}, std::pair{"weighted_median", "weighted_median"},
+          std::pair{"q1", "first_weighted_quartile"}, std::pair{"q3", "third_weighted_quartile"}}) {
+      // Within one unit of its 6th decimal: the error maps themselves differ in the last bits.
+      EXPECT_LE(std::abs(std::stod(printed(got.at("flip").at(key).get<double>())) -
+                         std::stod(printed(want.at(tool_key).get<double>()))),
+                1.5e-6)
+          << key;
+    }
+  }
+  EXPECT_EQ(tool_checked, ldr + hdr);
+  const std::string name = "render_village_street_sao_with_ao_shift";
+  const Outcome one =
+      compare(dir, (pairs / (name + "_a.png")).string() + " " +
+                       (pairs / (name + "_b.png")).string() + " --metric flip --flip-pooling tool");
+  EXPECT_NE(one.out.find("flip: mean " + printed(expected.at(name).at("flip").at("mean")) +
+                         " weighted_median "),
+            std::string::npos)
+      << one.out;
+  EXPECT_EQ(compare(dir, "a.png b.png --flip-pooling float").rc, 2);
 }
 
 TEST(MetricCli, SixteenBitPngsKeepTheirSixteenBits) {
