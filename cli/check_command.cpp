@@ -27,6 +27,8 @@ struct HarnessArgs {
   std::optional<double> max_mismatch;
   std::optional<int> max_channel_delta;
   std::vector<std::string> gates;
+  std::optional<double> warn_mismatch;  // folder mode's warning tier
+  std::vector<std::string> warn_gates;
   bool diff_all = false, no_reuse = false, platform = false, list = false, json = false;
   bool force = false, from_report = false, failed = false, single_file = false;
   bool wait = false;  // for a folder another run holds, instead of failing at once
@@ -53,6 +55,12 @@ void add_selection_options(CLI::App* cmd, HarnessArgs& a) {
   cmd->add_option("--gate", a.gates,
                   "folder mode: METRIC.KEY=VALUE, as in `compare --gate` (e.g. flip.max_mean=0.02; "
                   "repeatable); EXR images are judged by these");
+  cmd->add_option("--warn-max-mismatch", a.warn_mismatch,
+                  "folder mode: a passing image above this Resemble mismatch % is a WARN (exit 0)")
+      ->check(CLI::Range(0.0, 100.0));
+  cmd->add_option("--warn-gate", a.warn_gates,
+                  "folder mode: METRIC.KEY=VALUE, a gate a passing image may break with a WARN "
+                  "(exit 0), e.g. flip.max_mean=0.005; repeatable");
   cmd->add_option("--filter", a.filter,
                   "only cases whose id contains a match of this regular expression (anchor it, "
                   "'^id$', for exactly one case)");
@@ -80,10 +88,11 @@ hs::Suite load(const HarnessArgs& a) {
     throw std::invalid_argument(folders ? "give a suite file or --actual/--expected, not both"
                                         : "give a suite file, or --actual DIR --expected DIR");
   }
-  if (!folders && (a.max_mismatch || a.max_channel_delta || !a.gates.empty())) {
+  if (!folders && (a.max_mismatch || a.max_channel_delta || !a.gates.empty() || a.warn_mismatch ||
+                   !a.warn_gates.empty())) {
     throw std::invalid_argument(
-        "--max-mismatch, --max-channel-delta and --gate are folder mode's; a suite says its "
-        "tolerances itself");
+        "--max-mismatch, --max-channel-delta, --gate and --warn-* are folder mode's; a suite "
+        "says its tolerances itself");
   }
   if (folders) {
     if (!a.goldens.empty() || a.platform || !a.tag.empty()) {
@@ -97,6 +106,8 @@ hs::Suite load(const HarnessArgs& a) {
     for (const std::string& spec : a.gates) metric::add_gate_spec(t.gates, spec);
     // As in a suite: gates alone replace Resemble's gate.
     t.resemble = a.max_mismatch || a.max_channel_delta || t.gates.empty();
+    if (a.warn_mismatch) t.warn.max_mismatch_percent = *a.warn_mismatch;
+    for (const std::string& spec : a.warn_gates) metric::add_gate_spec(t.warn.gates, spec);
     return hs::folder_suite(a.actual, a.expected, t);
   }
   hs::Suite suite = hs::load_suite(a.suite);
@@ -124,8 +135,9 @@ void print_progress(const hs::CaseResult& r, int done, int total) {
     // was measured), then each gate, named by its region; nothing where nothing was measured.
     if ((r.tolerance.resemble || v.outcomes.empty()) && !v.mismatch_text.empty()) {
       detail += fmt::format(" {}%", v.mismatch_text);
-      if (!v.identical) detail += fmt::format(" max Δ {}", v.max_channel_delta);
     }
+    // How much and where it differs most (idiff's "max error @ (x, y)"), float images too.
+    if (!v.largest.text().empty()) detail += " max Δ " + v.largest.text();
     for (const metric::Outcome& o : v.outcomes) {
       detail += fmt::format(" {}{} {} {:.4g}", o.region.empty() ? "" : o.region + ": ", o.metric,
                             o.stat, o.value);
@@ -211,6 +223,7 @@ int finish(const hs::RunResults& run, const fs::path& report_dir, const std::str
         {"new", n.fresh},
         {"errors", n.error},
         {"flaky", n.flaky},
+        {"warnings", n.warn},
         {"exit_status", hs::exit_code(n)},
         {"report", hs::printable(report)},
         {"results", hs::printable((report_dir / "results.json").string())},
@@ -224,7 +237,8 @@ int finish(const hs::RunResults& run, const fs::path& report_dir, const std::str
     std::fflush(stdout);
     return hs::exit_code(n);
   }
-  const std::string flaky = n.flaky ? fmt::format(", {} flaky", n.flaky) : "";
+  const std::string flaky = (n.flaky ? fmt::format(", {} flaky", n.flaky) : "") +
+                            (n.warn ? fmt::format(", {} with warnings", n.warn) : "");
   if (out.skipped && !out.skipped->empty()) {
     fmt::print("skipped {} file{}: {}\n", out.skipped->size(), out.skipped->size() == 1 ? "" : "s",
                skipped_text(*out.skipped));
@@ -247,8 +261,8 @@ int finish(const hs::RunResults& run, const fs::path& report_dir, const std::str
     fmt::print("  to accept {}: {}\n", c.id, hs::printable(c.bless_command));
   }
   if (to_accept.size() > 1 && !accept_all.empty()) {
-    fmt::print("  to accept all {} failing and new cases: {}\n", to_accept.size(),
-               hs::printable(accept_all));
+    fmt::print("  to accept all {} failing{} and new cases: {}\n", to_accept.size(),
+               n.warn ? ", warning" : "", hs::printable(accept_all));
   }
   if (!to_accept.empty() && !run.bless_prefix.empty()) {
     fmt::print("  or review {} and accept the images it shows: {} --failed --report {}\n",

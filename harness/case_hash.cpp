@@ -43,6 +43,8 @@ std::string judge_hash(const Case& c, const std::string& input,
     }
   };
   add_gates(t.gates);
+  h.add(t.warn.max_mismatch_percent).add(t.warn.max_channel_delta).add(t.warn.max_differing_pixels);
+  add_gates(t.warn.gates);
   for (const Region& r : t.regions) {
     h.add(r.name).add(r.color);
     add_gates(r.gates);

@@ -170,7 +170,8 @@ void write_html_report(const RunResults& run, const fs::path& report_dir,
     return inside(cases_dir, rel) ? "cases/" + rel : "";
   };
 
-  // Failures and NEW first, then flaky, then passes by margin: near misses before easy passes.
+  // Failures and NEW first, then flaky, warnings, then passes by margin: near misses before easy
+  // passes.
   std::vector<std::size_t> order(run.cases.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
   std::vector<Nearest> nearest(run.cases.size());
@@ -206,16 +207,19 @@ void write_html_report(const RunResults& run, const fs::path& report_dir,
     std::string delta;
     nlohmann::json images = nlohmann::json::array();
     for (const ImageVerdict& v : c.images) {
-      delta += (delta.empty() ? "" : " / ") + std::to_string(v.max_channel_delta);
+      delta += (delta.empty() ? "" : " / ") +
+               (v.largest.x < 0 ? std::to_string(v.max_channel_delta) : v.largest.text());
       nlohmann::json image = {{"image", v.image},
                               {"status", status_name(v.status)},
                               {"mismatch", v.mismatch_text},
                               {"delta", v.max_channel_delta},
+                              {"largest", v.largest.text()},
                               {"identical", v.identical},
                               {"message", printable(v.message)},
                               {"diff", url(file_of(c, "diff:" + v.image))},
                               {"heat", url(file_of(c, "heat:" + v.image))},
                               {"regions", url(file_of(c, "regions:" + v.image))},
+                              {"ignored", url(file_of(c, "ignored:" + v.image))},
                               {"gates", gates_json(v)}};
       picture(image, "new", file_of(c, v.image));
       picture(image, "golden", file_of(c, "golden:" + v.image));
@@ -271,21 +275,22 @@ void write_html_report(const RunResults& run, const fs::path& report_dir,
   std::string body = fmt::format(
       "<header><h1>aosuite: {}</h1>\n<p>{} cases: <span class=PASS>{} passed</span>, <span "
       "class=FAIL>{} failed</span>, <span class=NEW>{} new</span>, <span class=ERROR>{} "
-      "errors</span>{}. Suite <code>{}</code>{}.{}</p>\n",
+      "errors</span>{}{}. Suite <code>{}</code>{}.{}</p>\n",
       escape_markup(run.suite), run.cases.size(), n.pass, n.fail, n.fresh, n.error,
       n.flaky ? fmt::format(", <span class=FLAKY>{} flaky</span>", n.flaky) : "",
+      n.warn ? fmt::format(", <span class=WARN>{} with warnings</span>", n.warn) : "",
       escape_markup(run.suite_file), run.shard.empty() ? "" : ", shard " + escape_markup(run.shard),
       run.environment.empty() ? ""
                               : " Made on " + escape_markup(run.environment) + " (platform <code>" +
                                     escape_markup(run.platform) + "</code>).");
-  // Two views of the same cases: the table (one case opened beside it), and every FAIL, NEW and
-  // ERROR case on one scrolling page.
+  // Two views of the same cases: the table (one case opened beside it), and every FAIL, NEW,
+  // WARN and ERROR case on one scrolling page.
   body += fmt::format(
       "<nav id=bar><span id=views><button data-view=table class=on>table</button> <button "
       "data-view=failures>failures on one page (<span id=failing>{}</span>)</button></span> "
       "<span id=filters>",
-      n.fail + n.fresh + n.error);
-  for (const char* st : {"ERROR", "FAIL", "NEW", "FLAKY", "PASS"}) {
+      n.fail + n.fresh + n.error + n.warn);
+  for (const char* st : {"ERROR", "FAIL", "NEW", "FLAKY", "WARN", "PASS"}) {
     int count_of = 0;
     for (const CaseResult& c : run.cases) count_of += status_name(c.status) == st;
     body += fmt::format(

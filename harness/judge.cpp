@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <stdexcept>
 
@@ -28,6 +29,8 @@ std::string_view status_name(Status s) {
       return "ERROR";
     case Status::kFlaky:
       return "FLAKY";
+    case Status::kWarn:
+      return "WARN";
   }
   return "ERROR";
 }
@@ -35,26 +38,61 @@ std::string_view status_name(Status s) {
 int severity(Status s) {
   switch (s) {
     case Status::kError:
-      return 4;
+      return 5;
     case Status::kFail:
-      return 3;
+      return 4;
     case Status::kNew:
-      return 2;
+      return 3;
     case Status::kFlaky:
+      return 2;
+    case Status::kWarn:
       return 1;
     case Status::kPass:
       return 0;
   }
-  return 4;
+  return 5;
 }
 
 Status worst(Status a, Status b) { return severity(a) >= severity(b) ? a : b; }
 
 Status parse_status(std::string_view name) {
-  for (Status s : {Status::kPass, Status::kFail, Status::kNew, Status::kError, Status::kFlaky}) {
+  for (Status s : {Status::kPass, Status::kFail, Status::kNew, Status::kError, Status::kFlaky,
+                   Status::kWarn}) {
     if (status_name(s) == name) return s;
   }
   throw std::invalid_argument("unknown status '" + std::string(name) + "'");
+}
+
+std::string LargestDifference::text() const {
+  return x < 0 ? std::string() : fmt::format("{:.4g} @ ({}, {})", value, x, y);
+}
+
+std::vector<std::uint8_t> ignored_pixels(const Tolerance& t, int width, int height) {
+  if (t.ignore.empty() && t.mask.empty()) return {};
+  const std::size_t w = std::size_t(width);
+  std::vector<std::uint8_t> out(w * std::size_t(height), 0);
+  for (const resemble::Box& b : t.ignore) {
+    const auto clip = [](int v, int size) { return std::clamp(v, 0, size); };
+    const int x0 = clip(static_cast<int>(b.left), width);
+    const int x1 = clip(static_cast<int>(b.right) + 1, width);
+    const int y0 = clip(static_cast<int>(b.top), height);
+    const int y1 = clip(static_cast<int>(b.bottom) + 1, height);
+    for (int y = y0; y < y1; ++y)
+      std::fill_n(out.begin() + std::ptrdiff_t(std::size_t(y) * w + std::size_t(x0)), x1 - x0, 1);
+  }
+  if (!t.mask.empty()) {
+    const RgbaImage mask = read_png(t.mask);
+    if (mask.width() != width || mask.height() != height) {
+      throw std::runtime_error(fmt::format("mask {} is {}x{}, the images are {}x{}",
+                                           t.mask.string(), mask.width(), mask.height(), width,
+                                           height));
+    }
+    for (std::size_t i = 0; i < out.size(); ++i) {
+      const unsigned char* m = mask.data() + 4 * i;
+      out[i] |= m[0] != 0 || m[1] != 0 || m[2] != 0;
+    }
+  }
+  return out;
 }
 
 std::string golden_hash(std::span<const unsigned char> bytes) {
@@ -68,54 +106,60 @@ void copy_pixel(const RgbaImage& from, RgbaImage& to, std::size_t i) {
   std::copy_n(from.data() + 4 * i, 4, to.data() + 4 * i);
 }
 
-// The render with ignored regions taken from the golden, so neither Resemble nor the channel
+// The render with ignored pixels taken from the golden, so neither Resemble nor the channel
 // delta sees a difference there.
 RgbaImage without_ignored(const RgbaImage& render, const RgbaImage& golden, const Tolerance& t,
                           const Counted* counted) {
   if (t.ignore.empty() && t.mask.empty() && !counted) return render;
   RgbaImage out = copy_of(render);
-  const std::size_t w = std::size_t(render.width()), pixels = w * std::size_t(render.height());
+  const std::vector<std::uint8_t> ignored = ignored_pixels(t, render.width(), render.height());
+  for (std::size_t i = 0; i < ignored.size(); ++i)
+    if (ignored[i]) copy_pixel(golden, out, i);
   if (counted) {  // background: the golden's pixels, so nothing differs there
-    for (std::size_t i = 0; i < pixels; ++i)
+    for (std::size_t i = 0; i < counted->size(); ++i)
       if (!(*counted)[i]) copy_pixel(golden, out, i);
-  }
-  for (const resemble::Box& b : t.ignore) {
-    // Inclusive corners, clipped to the frame.
-    const auto clip = [](int v, int size) { return std::clamp(v, 0, size); };
-    const int x0 = clip(static_cast<int>(b.left), render.width());
-    const int x1 = clip(static_cast<int>(b.right) + 1, render.width());
-    const int y0 = clip(static_cast<int>(b.top), render.height());
-    const int y1 = clip(static_cast<int>(b.bottom) + 1, render.height());
-    for (int y = y0; y < y1; ++y)
-      for (int x = x0; x < x1; ++x) copy_pixel(golden, out, std::size_t(y) * w + std::size_t(x));
-  }
-  if (!t.mask.empty()) {
-    const RgbaImage mask = read_png(t.mask);
-    if (mask.width() != render.width() || mask.height() != render.height()) {
-      throw std::runtime_error(fmt::format("mask {} is {}x{}, the images are {}x{}",
-                                           t.mask.string(), mask.width(), mask.height(),
-                                           render.width(), render.height()));
-    }
-    for (std::size_t i = 0; i < pixels; ++i) {
-      const unsigned char* m = mask.data() + 4 * i;
-      if (m[0] != 0 || m[1] != 0 || m[2] != 0) copy_pixel(golden, out, i);
-    }
   }
   return out;
 }
 
-// The largest |a - b| of any R, G, B or A sample, and the pixels where any differs.
+// The largest |a - b| of any R, G, B or A sample and where it is, and the pixels where any
+// differs.
 void channel_differences(const RgbaImage& a, const RgbaImage& b, ImageVerdict& v) {
   const std::size_t n = a.view().bytes();
   int hi = 0;
+  std::size_t at = 0;
   long long pixels = 0;
   for (std::size_t i = 0; i < n; i += 4) {
     int pixel = 0;
     for (std::size_t c = i; c < i + 4; ++c)
       pixel = std::max(pixel, std::abs(int(a.data()[c]) - int(b.data()[c])));
-    hi = std::max(hi, pixel), pixels += pixel > 0;
+    if (pixel > hi) hi = pixel, at = i / 4;
+    pixels += pixel > 0;
   }
   v.max_channel_delta = hi, v.differing_pixels = pixels;
+  const std::size_t w = std::size_t(a.width());
+  if (hi > 0) v.largest = {double(hi), int(at % w), int(at / w)};
+}
+
+// The largest finite |a - b| of any sample of two float images of one size (a grey one against
+// each of the other's channels) and where it is, over the counted pixels.
+LargestDifference float_difference(const FloatImage& a, const FloatImage& b,
+                                   const Counted* counted) {
+  LargestDifference out;
+  const std::size_t pixels = std::size_t(a.width) * std::size_t(a.height);
+  const std::size_t ca = std::size_t(a.channels), cb = std::size_t(b.channels);
+  const std::size_t channels = std::max(ca, cb);
+  for (std::size_t i = 0; i < pixels; ++i) {
+    if (counted && !(*counted)[i]) continue;
+    for (std::size_t c = 0; c < channels; ++c) {
+      const double d = std::abs(double(a.data[i * ca + std::min(c, ca - 1)]) -
+                                double(b.data[i * cb + std::min(c, cb - 1)]));
+      if (std::isfinite(d) && d > out.value) {
+        out = {d, int(i % std::size_t(a.width)), int(i / std::size_t(a.width))};
+      }
+    }
+  }
+  return out;
 }
 
 verdict::ResembleAllowance allowance(const Tolerance& t) {
@@ -193,13 +237,40 @@ std::vector<std::uint8_t> region_classes(const fs::path& file, const Tolerance& 
   return out;
 }
 
+// The tolerance's metric gates and, with no limit, each metric only its warning tier gates:
+// measured once, judged by each tier.
+std::vector<metric::Gates> measured_gates(const Tolerance& t) {
+  std::vector<metric::Gates> out = t.gates;
+  for (const metric::Gates& g : t.warn.gates) metric::gates_for(out, *g.metric);
+  return out;
+}
+
+// The warning tier on a passing image: the one verdict rule under the tier's limits, over the
+// figures and whole-image measurements the failing tier's judgement already made.
+verdict::Verdict warned(const ImageVerdict& v, const WarnLimits& w, bool resemble) {
+  std::vector<metric::Outcome> outcomes;
+  for (const metric::Gates& g : w.gates) {
+    for (const metric::Measurement& m : v.measured) {
+      if (m.metric != g.metric->name) continue;
+      for (metric::Outcome& o : metric::judge(g, m)) outcomes.push_back(std::move(o));
+    }
+  }
+  const verdict::ResembleFigures found = figures(v);
+  return verdict::decide(resemble && w.resemble() ? &found : nullptr,
+                         {.max_mismatch_percent = w.max_mismatch_percent,
+                          .max_channel_delta = w.max_channel_delta,
+                          .max_differing_pixels = w.max_differing_pixels},
+                         outcomes);
+}
+
 // The tolerance's metric gates, over the counted pixels; with regions, each region's gates
 // over its painted pixels and the tolerance's over the unpainted ones.
 void measure_gates(const Picture& golden, const Picture& render, const Tolerance& t,
                    const fs::path& golden_file, std::string_view image, bool want_map,
                    const Counted* counted, ImageVerdict& v) {
+  const std::vector<metric::Gates> whole = measured_gates(t);
   if (t.regions.empty()) {
-    measure_set(t.gates, "", golden, render, want_map, counted, v);
+    measure_set(whole, "", golden, render, want_map, counted, v);
     return;
   }
   const std::vector<std::uint8_t> classes =
@@ -208,7 +279,7 @@ void measure_gates(const Picture& golden, const Picture& render, const Tolerance
     Counted mask(classes.size());
     for (std::size_t i = 0; i < mask.size(); ++i)
       mask[i] = classes[i] == k && (!counted || (*counted)[i]);
-    measure_set(k == 0 ? t.gates : t.regions[k - 1].gates, k == 0 ? "" : t.regions[k - 1].name,
+    measure_set(k == 0 ? whole : t.regions[k - 1].gates, k == 0 ? "" : t.regions[k - 1].name,
                 golden, render, want_map, &mask, v);
   }
 }
@@ -274,7 +345,7 @@ ImageVerdict against(std::string_view image, std::span<const unsigned char> rend
         return v;
       }
       resemble_figures(golden, render, t, counted, v);
-      if (!t.gates.empty()) {
+      if (!t.gates.empty() || !t.warn.gates.empty()) {
         try {
           measure_gates(metric_picture(bytes, golden, golden_file.string()),
                         metric_picture(render_bytes, render, "the render"), t, golden_file, image,
@@ -295,6 +366,7 @@ ImageVerdict against(std::string_view image, std::span<const unsigned char> rend
         return v;
       }
       measure_gates(golden, rendered, t, golden_file, image, want_map, counted, v);
+      v.largest = float_difference(golden.floats, rendered.floats, counted);
     }
     const verdict::ResembleFigures found = figures(v);
     const verdict::Verdict d =
@@ -305,6 +377,8 @@ ImageVerdict against(std::string_view image, std::span<const unsigned char> rend
     if (d.pass) {
       v.stale = verdict::stale_budgets(!is_float && t.resemble ? &found : nullptr, allowance(t),
                                        v.outcomes);
+      const verdict::Verdict w = warned(v, t.warn, !is_float);
+      if (!w.pass) v.status = Status::kWarn, v.message = "warning: " + w.message();
     }
   } catch (const std::exception& e) {
     v.status = Status::kError;
@@ -320,6 +394,18 @@ bool closer(const ImageVerdict& a, const ImageVerdict& b) {
   };
   if (failed(a) != failed(b)) return failed(a) < failed(b);
   return a.mismatch_percent < b.mismatch_percent;
+}
+
+// Resemble's diff image of a failing or warning 8-bit image of the golden's size, when asked.
+void add_diff(ImageVerdict& v, const RgbaImage& render, const Tolerance& t, bool want_diff,
+              const Counted* counted) {
+  if (!want_diff || v.mismatch_percent >= 100 || render.empty()) return;
+  if (v.status != Status::kFail && v.status != Status::kWarn) return;
+  const std::vector<unsigned char> bytes = read_file(v.golden, kMaxFileBytes);
+  const RgbaImage golden = decode_rgba8(bytes, v.golden.string(), kMaxFileBytes);
+  v.diff = resemble::compare(golden, without_ignored(render, golden, t, counted),
+                             resemble_options(t, true))
+               .diff;
 }
 
 }  // namespace
@@ -342,19 +428,19 @@ ImageVerdict judge(std::string_view image, std::span<const unsigned char> render
   }
   for (ImageVerdict& v : tried) {
     if (v.status == Status::kPass) {
-      v.heatmap = {};  // maps are for failures
+      v.heatmap = {};  // maps are for failures and warnings
       return v;
     }
   }
+  // A variant that passes with a warning before any that fails.
+  if (const auto warning = std::ranges::find(tried, Status::kWarn, &ImageVerdict::status);
+      warning != tried.end()) {
+    add_diff(*warning, render, tolerance, want_diff, counted);
+    return *warning;
+  }
   // None passed: report the closest golden.
   ImageVerdict best = *std::min_element(tried.begin(), tried.end(), closer);
-  if (want_diff && best.status == Status::kFail && best.mismatch_percent < 100 && !render.empty()) {
-    const std::vector<unsigned char> bytes = read_file(best.golden, kMaxFileBytes);
-    const RgbaImage golden = decode_rgba8(bytes, best.golden.string(), kMaxFileBytes);
-    best.diff = resemble::compare(golden, without_ignored(render, golden, tolerance, counted),
-                                  resemble_options(tolerance, true))
-                    .diff;
-  }
+  add_diff(best, render, tolerance, want_diff, counted);
   return best;
 }
 

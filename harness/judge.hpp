@@ -12,13 +12,23 @@
 namespace aosuite::harness {
 
 // kFlaky: a case that failed, then passed when run again (--retries); never an image's verdict.
-enum class Status { kPass, kFail, kNew, kError, kFlaky };
-std::string_view status_name(Status s);  // PASS FAIL NEW ERROR FLAKY
-// How much a status needs a person's eyes: ERROR 4, FAIL 3, NEW 2, FLAKY 1, PASS 0. A case is
-// as severe as its worst image, and the report lists the most severe first.
+// kWarn: passed, but beyond a limit of the tolerance's warning tier; exits 0 as a pass does.
+enum class Status { kPass, kFail, kNew, kError, kFlaky, kWarn };
+std::string_view status_name(Status s);  // PASS FAIL NEW ERROR FLAKY WARN
+// How much a status needs a person's eyes: ERROR 5, FAIL 4, NEW 3, FLAKY 2, WARN 1, PASS 0. A case
+// is as severe as its worst image, and the report lists the most severe first.
 int severity(Status s);
 Status worst(Status a, Status b);  // the more severe; `a` on a tie
 Status parse_status(std::string_view name);
+
+// Where the render differs most from its golden (idiff's "max error @ (x, y)"): the largest
+// |new - golden| of any sample (0..255 for 8-bit images, the samples' own unit for float ones)
+// and the first pixel, row-major, that holds it; x = y = -1 where nothing differs.
+struct LargestDifference {
+  double value = 0;
+  int x = -1, y = -1;
+  std::string text() const;  // "12 @ (3, 4)", "0.0312 @ (3, 4)"; "" where nothing differs
+};
 
 struct ImageVerdict {
   std::string image;  // no_ao | with_ao | ao_only | ao_float, or an image case's own
@@ -28,6 +38,7 @@ struct ImageVerdict {
   std::string mismatch_text;       // its misMatchPercentage ("0.42")
   int max_channel_delta = 0;       // largest |new - golden| over unignored pixels
   long long differing_pixels = 0;  // unignored pixels with any channel changed
+  LargestDifference largest;       // over the unignored pixels; measured images only
   std::filesystem::path golden;    // the accepted golden closest to the render
   std::string message;             // why it failed or could not be judged
   // A passing, measured (not byte-identical) image's budgets it uses under a tenth of
@@ -46,6 +57,11 @@ struct ImageVerdict {
   // value are the render's. False where no tolerance could make it pass (another size or kind).
   bool comparable = false;
 };
+
+// The pixels a tolerance's ignore boxes (inclusive corners, clipped to the frame) and mask (not
+// black) take out of a width x height 8-bit comparison: 1 ignored, row-major; empty when it has
+// neither. Throws std::runtime_error naming a mask of another size.
+std::vector<std::uint8_t> ignored_pixels(const Tolerance& t, int width, int height);
 
 // A golden's bytes as ImageVerdict::golden_hash records them.
 std::string golden_hash(std::span<const unsigned char> bytes);

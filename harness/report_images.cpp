@@ -101,6 +101,27 @@ std::string shown_image(const fs::path& dir, const std::string& rel) {
 }
 
 constexpr int kThumbW = 160, kThumbH = 120;
+RgbaImage ignored_overlay(std::span<const std::uint8_t> ignored, int width, int height) {
+  RgbaImage out(width, height);
+  const auto at = [&](int x, int y) {
+    return ignored[std::size_t(y) * std::size_t(width) + std::size_t(x)] != 0;
+  };
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      unsigned char* p = out.data() + 4 * (std::size_t(y) * std::size_t(width) + std::size_t(x));
+      if (!at(x, y)) {
+        std::fill_n(p, 4, 0);
+        continue;
+      }
+      // An edge: an ignored pixel beside a compared one or the frame.
+      const bool edge = x == 0 || y == 0 || x == width - 1 || y == height - 1 || !at(x - 1, y) ||
+                        !at(x + 1, y) || !at(x, y - 1) || !at(x, y + 1);
+      p[0] = 0, p[1] = 120, p[2] = 255, p[3] = edge ? 255 : 96;
+    }
+  }
+  return out;
+}
+
 std::string thumbnail(const fs::path& dir, const std::string& rel) {
   if (!inside(dir, rel)) return "";
   const fs::path file = dir / rel;

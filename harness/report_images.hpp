@@ -4,7 +4,9 @@
 // only (never into a goldens folder), and only for images the report shows.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
+#include <span>
 #include <string>
 
 #include "image/picture.hpp"
@@ -26,6 +28,11 @@ RgbaImage display_rgba8(const Picture& p);
 // gets a preview of its own, and the old one is removed. Empty when `rel` is no plain file
 // inside `dir` or cannot be read.
 std::string shown_image(const std::filesystem::path& dir, const std::string& rel);
+
+// What the report draws over a diff to show the pixels a tolerance ignored (ignored_pixels():
+// width * height flags): those pixels a translucent blue, their outline opaque, the rest
+// transparent.
+RgbaImage ignored_overlay(std::span<const std::uint8_t> ignored, int width, int height);
 
 // A thumbnail of the PNG `rel` (relative to `dir`) at most 160x120: the image itself when it is
 // that small, else thumb_<name> beside it (made again when older than it). Empty when `rel`

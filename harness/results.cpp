@@ -51,6 +51,7 @@ json to_json(const ImageVerdict& v) {
           {"mismatch_text", v.mismatch_text},
           {"max_channel_delta", v.max_channel_delta},
           {"differing_pixels", v.differing_pixels},
+          {"largest", {{"value", v.largest.value}, {"x", v.largest.x}, {"y", v.largest.y}}},
           {"stale", v.stale},
           {"golden", printable(v.golden.string())},
           {"golden_hash", v.golden_hash},
@@ -67,6 +68,9 @@ ImageVerdict verdict_from_json(const json& j) {
   v.mismatch_text = j.at("mismatch_text");
   v.max_channel_delta = int_at(j, "max_channel_delta");
   v.differing_pixels = j.value("differing_pixels", 0LL);
+  if (const auto l = j.find("largest"); l != j.end()) {  // absent in older results
+    v.largest = {l->at("value").get<double>(), int_at(*l, "x"), int_at(*l, "y")};
+  }
   v.stale = j.value("stale", std::vector<std::string>());
   v.golden = j.at("golden").get<std::string>();
   // Absent in older results: `tolerances suggest` then asks for a new run.
@@ -124,7 +128,12 @@ json to_json(const CaseResult& c) {
         {"min_channel_delta", c.tolerance.min_channel_delta},
         {"differing_pixels", {c.tolerance.min_differing_pixels, c.tolerance.max_differing_pixels}},
         {"ignore", ignore},
-        {"mask", printable(c.tolerance.mask.string())}}},
+        {"mask", printable(c.tolerance.mask.string())},
+        {"warn",
+         {{"max_mismatch_percent", c.tolerance.warn.max_mismatch_percent},
+          {"max_channel_delta", c.tolerance.warn.max_channel_delta},
+          {"max_differing_pixels", c.tolerance.warn.max_differing_pixels},
+          {"gates", gates_of(c.tolerance.warn.gates)}}}}},
       {"status", status_name(c.status)},
       {"message", printable(c.message)},
       {"images", images},
@@ -172,6 +181,12 @@ CaseResult case_from_json(const json& j) {
       out.push_back(metric::gates_from_json(metric::find(name), g));
   };
   gates_from(t.value("gates", json::object()), c.tolerance.gates);
+  if (const auto w = t.find("warn"); w != t.end()) {
+    c.tolerance.warn.max_mismatch_percent = w->at("max_mismatch_percent");
+    c.tolerance.warn.max_channel_delta = int_at(*w, "max_channel_delta");
+    c.tolerance.warn.max_differing_pixels = w->at("max_differing_pixels");
+    gates_from(w->at("gates"), c.tolerance.warn.gates);
+  }
   const json regions = t.value("regions", json::object());
   for (const auto& [name, r] : regions.items()) {
     Region region{name, r.at("color").get<std::array<int, 3>>(), {}};
@@ -309,6 +324,9 @@ Counts count(const RunResults& r) {
         break;
       case Status::kFlaky:
         ++n.flaky;
+        break;
+      case Status::kWarn:
+        ++n.warn;
         break;
     }
   }

@@ -95,10 +95,10 @@ RunResults read_results(const std::filesystem::path& dir);
 void write_results(const std::filesystem::path& dir, const RunResults& r);
 
 struct Counts {
-  int pass = 0, fail = 0, fresh = 0, error = 0, flaky = 0;
+  int pass = 0, fail = 0, fresh = 0, error = 0, flaky = 0, warn = 0;
 };
 Counts count(const RunResults& r);
-// 0 all passed (flaky ones too), 1 any failed or new, 2 any could not be judged.
+// 0 all passed (flaky and warning ones too), 1 any failed or new, 2 any could not be judged.
 int exit_code(const Counts& c);
 
 }  // namespace aosuite::harness

@@ -17,6 +17,7 @@
 #include "harness/command.hpp"
 #include "harness/escape.hpp"
 #include "harness/goldens.hpp"
+#include "harness/report_images.hpp"
 #include "image/exr_file.hpp"
 #include "image/image_file.hpp"
 #include "image/image_io.hpp"
@@ -373,7 +374,7 @@ void judge_case(const Suite& suite, const Case& c, const std::string& platform, 
                            goldens[i], c.tolerance, true, counted ? &*counted : nullptr);
     if (v.status == Status::kNew)
       v.message += " at " + printable(bless_target(suite, c, name, "", "").string());
-    const bool show = v.status == Status::kFail || o.diff_all;
+    const bool show = v.status == Status::kFail || v.status == Status::kWarn || o.diff_all;
     if (!v.diff.empty() && show) {
       write_png_rgba8(case_dir / ("diff_" + name + ".png"), v.diff);
       r.files["diff:" + name] = c.id + "/diff_" + name + ".png";
@@ -381,6 +382,15 @@ void judge_case(const Suite& suite, const Case& c, const std::string& platform, 
     if (!v.heatmap.empty() && show) {
       write_png_rgba8(case_dir / ("heat_" + name + ".png"), v.heatmap);
       r.files["heat:" + name] = c.id + "/heat_" + name + ".png";
+    }
+    if (show && !v.diff.empty()) {  // what the tolerance ignored, drawn over the diff
+      const std::vector<std::uint8_t> ignored =
+          ignored_pixels(c.tolerance, v.diff.width(), v.diff.height());
+      if (!ignored.empty()) {
+        write_png_rgba8(case_dir / ("ignored_" + name + ".png"),
+                        ignored_overlay(ignored, v.diff.width(), v.diff.height()));
+        r.files["ignored:" + name] = c.id + "/ignored_" + name + ".png";
+      }
     }
     if (!c.tolerance.regions.empty() && !v.golden.empty()) {
       const fs::path map = region_map(v.golden, name);
@@ -546,13 +556,14 @@ RunResults check(const Suite& suite, const RunOptions& o) {
           r = skeleton(c);
           attempt(again, r);
           r.attempts = k + 1;
-          if (r.status == Status::kPass) {
+          if (r.status == Status::kPass || r.status == Status::kWarn) {
             r.status = Status::kFlaky;
             r.message =
                 fmt::format("failed, then passed on attempt {}: {}", k + 1, first_try.message);
           }
         }
-        if (r.status == Status::kFail || r.status == Status::kNew) {
+        // A warning is accepted as a failure is: its new images become the goldens.
+        if (r.status == Status::kFail || r.status == Status::kNew || r.status == Status::kWarn) {
           r.bless_command = bless_command(bless_prefix(suite), {c.id});
         }
       });

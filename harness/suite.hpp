@@ -27,6 +27,21 @@ struct Region {
 
 inline constexpr int kDefaultChannelDelta = 8;
 
+// The warning tier, `[tolerance.warn]` (idiff's -warn beside -fail): tighter limits that a
+// passing image may exceed and still pass, with a WARN status that exits 0, so a drift is seen
+// before it fails. Only the limits it names are checked; its metric gates judge the whole image
+// (with regions, the unpainted pixels), under the tolerance's Resemble mode.
+struct WarnLimits {
+  double max_mismatch_percent = 100;  // 100, 255, -1: not checked
+  int max_channel_delta = 255;
+  long long max_differing_pixels = -1;
+  std::vector<metric::Gates> gates;
+  bool resemble() const {
+    return max_mismatch_percent < 100 || max_channel_delta < 255 || max_differing_pixels >= 0;
+  }
+  bool empty() const { return !resemble() && gates.empty(); }
+};
+
 // How far a render may stray from its golden and still pass: Resemble's gate, the metrics'
 // gates, or both (all must hold).
 struct Tolerance {
@@ -51,6 +66,7 @@ struct Tolerance {
   std::vector<resemble::Box> ignore;  // left, top, right, bottom, in pixels
   std::filesystem::path
       mask;  // pixels where this PNG is not black (any of R, G, B > 0) are ignored
+  WarnLimits warn;
 };
 
 // The region map beside a golden: <image>.regions.png in its folder.

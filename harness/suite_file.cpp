@@ -108,6 +108,36 @@ std::pair<long long, long long> read_range(const Reader& r, const toml::node& n,
   return {lo, top};
 }
 
+// [tolerance.warn]: max_mismatch_percent, max_channel_delta, differing_pixels (a maximum) and
+// metric gates, as in the tolerance; each one it names warns.
+WarnLimits read_warn(const Reader& r, const toml::node& n) {
+  WarnLimits w;
+  for (const auto& [key, value] : r.table(n, "warn")) {
+    if (key.str() == "max_mismatch_percent") {
+      w.max_mismatch_percent = r.number(value, "max_mismatch_percent");
+      if (!(w.max_mismatch_percent >= 0 && w.max_mismatch_percent < 100))
+        r.fail(value.source(), "warn.max_mismatch_percent must be 0..100 (below 100)");
+    } else if (key.str() == "max_channel_delta") {
+      w.max_channel_delta = r.integer(value, "max_channel_delta", 0, 254);
+    } else if (key.str() == "differing_pixels") {
+      w.max_differing_pixels = r.integer(value, "differing_pixels", 0, 1 << 30);
+    } else {
+      const metric::Metric* m = nullptr;
+      try {
+        m = &metric::find(key.str());
+      } catch (const std::invalid_argument&) {
+        r.fail(value.source(),
+               fmt::format("unknown key '{}' (warn keys: max_mismatch_percent, max_channel_delta, "
+                           "differing_pixels, and the metrics {})",
+                           printable(key.str()), metric::names()));
+      }
+      w.gates.push_back(read_gates(r, *m, value));
+    }
+  }
+  if (w.empty()) r.fail(n.source(), "[tolerance.warn] sets no limit");
+  return w;
+}
+
 void read_tolerance(const Reader& r, const fs::path& dir, const toml::node& n, Tolerance& t) {
   const toml::table& tbl = r.table(n, "tolerance");
   static constexpr std::string_view kResembleKeys[] = {
@@ -127,6 +157,10 @@ void read_tolerance(const Reader& r, const fs::path& dir, const toml::node& n, T
       t.regions = read_regions(r, value);
       continue;
     }
+    if (key.str() == "warn") {
+      t.warn = read_warn(r, value);
+      continue;
+    }
     const metric::Metric* m = nullptr;
     try {
       m = &metric::find(key.str());
@@ -134,7 +168,7 @@ void read_tolerance(const Reader& r, const fs::path& dir, const toml::node& n, T
       r.fail(value.source(), fmt::format("unknown key '{}' (tolerance keys: mode, "
                                          "max_mismatch_percent, max_channel_delta, channel_delta, "
                                          "differing_pixels, ignore, mask, foreground_only, "
-                                         "regions, and the metrics {})",
+                                         "regions, warn, and the metrics {})",
                                          printable(key.str()), metric::names()));
     }
     std::erase_if(t.gates, [&](const metric::Gates& g) { return g.metric == m; });
@@ -234,11 +268,14 @@ std::string image_name(const Reader& r, const toml::node& at, const fs::path& fi
                             kImageFormats + ")");
   }
   const std::string stem = file.stem().string();
-  if (!valid_name(stem) || stem == "case" || stem.starts_with("golden_") ||
-      stem.starts_with("diff_") || stem.starts_with("thumb_")) {
+  static constexpr std::string_view kReportPrefixes[] = {"golden_", "diff_",    "thumb_",
+                                                         "heat_",   "regions_", "ignored_"};
+  if (!valid_name(stem) || stem == "case" ||
+      std::ranges::any_of(kReportPrefixes,
+                          [&](std::string_view p) { return stem.starts_with(p); })) {
     r.fail(at.source(), "image file name '" + printable(file.filename().string()) +
                             "' must be letters, digits, - _ . and not start with '.', golden_, "
-                            "diff_ or thumb_ (it names files)");
+                            "diff_, thumb_, heat_, regions_ or ignored_ (the report's files)");
   }
   return stem;
 }

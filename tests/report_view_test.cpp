@@ -1,10 +1,12 @@
 // What the report shows, as a reviewer sees it in headless Chromium at 1280x720: float (EXR)
 // images as pictures, through PNG previews beside them in the report folder, made again when
 // the EXR changes; a metric-gated row in its gate's own units; and every failure on one page,
-// golden | new | diff side by side, whose boxes feed the approve bar's bless command.
+// golden | new | diff side by side, whose boxes feed the approve bar's bless command; what a
+// tolerance ignores drawn over the diff.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "compare/opencv.hpp"
@@ -183,6 +185,44 @@ TEST_F(ReportView, APreviewIsMadeAgainWhenItsExrChanges) {
   ASSERT_EQ(check().rc, 1);
   EXPECT_EQ(by_id(data(), "ao.exr").at("images").at(0).at("new"), after);
   EXPECT_EQ(fs::last_write_time(dir_ / "rep" / after), written);
+}
+
+// What a tolerance sets apart is drawn over the diff: the pixels its ignore box and mask leave
+// out, as a layer (outlined, translucent inside) that the page stacks on the diff picture.
+TEST_F(ReportView, IgnoredPixelsAreDrawnOverTheDiff) {
+  fs::create_directories(dir_ / "s");
+  fs::copy_file(dir_ / "expected" / "chart.png", dir_ / "s" / "x.png");
+  cv::Mat mask(6, 8, CV_8UC4, cv::Scalar(0, 0, 0, 255));
+  mask.at<cv::Vec4b>(5, 7) = cv::Vec4b(255, 255, 255, 255);
+  write_png_rgba8(dir_ / "s" / "m.png", mask);
+  std::ofstream(dir_ / "s" / "t.toml") << "[[case]]\nname = \"x\"\nfiles = [\"x.png\"]\n"
+                                          "[case.tolerance]\nignore = [[0, 0, 2, 1]]\n"
+                                          "mask = \"m.png\"\n";
+  const auto aosuite = [&](const std::string& args) {
+    return test::run_shell("cd " + dir_.path().string() + " && " + AOSUITE_BIN + " " + args,
+                           dir_.path());
+  };
+  ASSERT_EQ(aosuite("bless s/t.toml").rc, 0);
+  fs::copy_file(dir_ / "actual" / "chart.png", dir_ / "s" / "x.png",
+                fs::copy_options::overwrite_existing);
+  const test::Outcome r = aosuite("check s/t.toml --report rep");
+  ASSERT_EQ(r.rc, 1) << r.out << r.err;  // rows 0-2 changed, beyond the box: still a failure
+  const nlohmann::json image = data().at(0).at("images").at(0);
+  ASSERT_EQ(image.at("ignored"), "cases/x/ignored_x.png");
+  const cv::Mat layer = read_png_rgba8(dir_ / "rep" / "cases" / "x" / "ignored_x.png");
+  ASSERT_EQ(layer.cols, 8);
+  ASSERT_EQ(layer.rows, 6);
+  for (const auto& [x, y] : {std::pair{0, 0}, std::pair{2, 1}, std::pair{7, 5}})
+    EXPECT_EQ(layer.at<cv::Vec4b>(y, x)[3], 255) << x << "," << y;  // ignored, on its outline
+  for (const auto& [x, y] : {std::pair{3, 0}, std::pair{4, 3}, std::pair{6, 5}})
+    EXPECT_EQ(layer.at<cv::Vec4b>(y, x)[3], 0) << x << "," << y;  // compared
+  const std::string panel = dom("#case=x");
+  EXPECT_NE(panel.find("<div class=\"over\"><img src=\"" + image.at("diff").get<std::string>() +
+                       "\" alt=\"diff\"><img class=\"ignored\" src=\"cases/x/ignored_x.png\""),
+            std::string::npos)
+      << panel;
+  EXPECT_EQ(panel.find("<figure class=\"missing\">"), std::string::npos)
+      << "a picture did not load";
 }
 
 }  // namespace

@@ -15,7 +15,8 @@
   const more = $("more");
 
   // --- rows: drawn a chunk at a time for the cases that pass the filter ----------------------
-  const failing = (s) => s === "FAIL" || s === "NEW" || s === "ERROR";
+  // What needs a person's eyes (and, but for ERROR, an approval to clear): not PASS or FLAKY.
+  const failing = (s) => s === "FAIL" || s === "NEW" || s === "ERROR" || s === "WARN";
   const text = data.map((c) => (c.id + " " + c.source + " " + c.message).toLowerCase());
   const selected = new Set(); // indices into data
   const rowOf = new Map(); // index into data -> its <tr>, once drawn
@@ -129,6 +130,17 @@
   const fig = (src, caption, file) =>
     !src && !file ? "" : `<figure>${src ? `<img src="${esc(url(src))}" alt="${esc(caption)}">` : ""}` +
       `<figcaption>${esc(caption)}${file ? ` — <a href="${esc(file)}">${esc(file.split("/").pop())}</a>${src ? " (sRGB preview)" : ""}` : ""}</figcaption></figure>`;
+  // The diff with what the tolerance set apart drawn over it: ignored pixels (boxes and mask)
+  // outlined in blue, regions tinted in their colours.
+  function diffFig(v) {
+    if (!v.diff) return "";
+    const layers = [[v.ignored, "ignored", "ignored pixels outlined in blue"], [v.regions, "regions", "regions tinted"]]
+      .filter((l) => l[0]);
+    if (!layers.length) return fig(v.diff, "diff");
+    return `<figure><div class=over><img src="${esc(url(v.diff))}" alt=diff>` +
+      layers.map(([src, cls, what]) => `<img class=${cls} src="${esc(url(src))}" alt="${what}">`).join("") +
+      `</div><figcaption>diff; ${layers.map((l) => l[2]).join(", ")}</figcaption></figure>`;
+  }
   document.addEventListener("error", (e) => {
     const fail = e.target.closest && e.target.closest("figure");
     if (fail && e.target.tagName === "IMG") fail.classList.add("missing");
@@ -137,13 +149,14 @@
   // (its message names the failing ones), the swap and the slider.
   function imageHtml(c, v, brief) {
     const resemble = c.resemble ? ` ${esc(v.mismatch || "-")}% (allowed ${c.allowed}%), max channel Δ ${v.delta}` : "";
-    let h = `<h3>${esc(v.image)} — <span class="${v.status}">${v.status}</span>${resemble}${v.identical ? ", byte-identical" : ""}</h3>`;
+    const where = v.largest ? `, largest difference ${esc(v.largest)}` : "";
+    let h = `<h3>${esc(v.image)} — <span class="${v.status}">${v.status}</span>${resemble}${where}${v.identical ? ", byte-identical" : ""}</h3>`;
     if (v.message) h += `<p>${esc(v.message)}</p>`;
     if (!brief && v.gates.length) {
       h += "<table class=gates><tr><th>gate</th><th>value</th><th>limit</th><th>margin</th></tr>" +
         v.gates.map((g) => `<tr class="${g.pass ? "PASS" : "FAIL"}"><td>${esc(g.gate)}</td><td class=num>${esc(g.value)}</td><td class=num>${esc(g.limit)}</td><td class=num>${esc(g.margin)}</td></tr>`).join("") + "</table>";
     }
-    h += `<div class=images>${fig(v.golden, "golden", v.golden_file)}${fig(v.new, "new", v.new_file)}${fig(v.diff, "diff")}${fig(v.heat, "FLIP error (magma)")}${fig(v.regions, "region map")}`;
+    h += `<div class=images>${fig(v.golden, "golden", v.golden_file)}${fig(v.new, "new", v.new_file)}${diffFig(v)}${fig(v.heat, "FLIP error (magma)")}${fig(v.regions, "region map")}`;
     if (!brief && v.golden && v.new && !v.identical) {
       h += `<figure><div class=swap><img class=golden src="${esc(url(v.golden))}" alt=golden><img class=new src="${esc(url(v.new))}" alt=new></div><figcaption>golden; hover for new</figcaption></figure>`;
       h += `<figure><div class=slider><img src="${esc(url(v.golden))}" alt=golden><img class=top src="${esc(url(v.new))}" alt=new><input type=range min=0 max=100 value=50 aria-label="new vs golden"></div><figcaption>slider: new (left) over golden</figcaption></figure>`;
@@ -241,7 +254,7 @@
   }
   document.addEventListener("keydown", onKey);
 
-  // --- every FAIL, NEW and ERROR case that passes the filter on one scrolling page: each with
+  // --- every FAIL, NEW, WARN and ERROR case that passes the filter on one scrolling page: each with
   // its id, a box to select it, and its failing images' verdicts and pictures -----------------
   let onePage = false;
   let listed = []; // indices into data: the failing ones of `view`
@@ -266,7 +279,7 @@
       for (const art of Array.from(failures.children).slice(listedDrawn)) blockOf.set(+art.dataset.i, art);
       listedDrawn = count;
     }
-    failuresMore.textContent = listedDrawn < listed.length ? `${listed.length - listedDrawn} more below` : listed.length ? "" : "No FAIL, NEW or ERROR case is shown.";
+    failuresMore.textContent = listedDrawn < listed.length ? `${listed.length - listedDrawn} more below` : listed.length ? "" : "No FAIL, NEW, WARN or ERROR case is shown.";
   }
   function listFailures() {
     listed = view.filter((i) => failing(data[i].status));
