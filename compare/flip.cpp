@@ -77,13 +77,31 @@ inline float clamp01(float v) {  // NaN -> 0, as the tool's Min(Max(v, 0), 1)
   return lo > 1.0f ? 1.0f : lo;
 }
 
+// x^y for x >= 0. kTool (Options::tool_arithmetic): glibc's powf, as the tool calls it; else a
+// vector approximation within a few ulp of it.
+template <bool kTool>
+inline float power(float x, float y) {
+  if constexpr (kTool) {
+    return std::pow(x, y);
+  } else {
+    return simd::pow_nonnegative(x, y);
+  }
+}
+
+template <bool kTool>
 inline float lab_f(float t) {
   constexpr float delta = 6.0f / 29.0f;
   constexpr float delta_square = delta * delta;
   constexpr float delta_cube = delta * delta_square;
   constexpr float factor = 1.0f / (3.0f * delta_square);
   constexpr float term = 4.0f / 29.0f;
-  const float c = simd::cbrt_positive(t > delta_cube ? t : 1.0f);
+  const float v = t > delta_cube ? t : 1.0f;
+  float c;
+  if constexpr (kTool) {
+    c = std::pow(v, 1.0f / 3.0f);  // the tool's powf(x, 1/3)
+  } else {
+    c = simd::cbrt_positive(v);
+  }
   return t > delta_cube ? c : factor * t + term;
 }
 
@@ -98,6 +116,7 @@ inline void to_ycxcz(float r, float g, float b, float& y, float& cx, float& cz) 
 }
 
 // Filtered YCxCz -> linear RGB, clamped -> CIELab with Hunt's adjustment (L, a', b').
+template <bool kTool>
 inline void to_lab_hunt(float y, float cx, float cz, float& l, float& a, float& b) {
   const float yv = (y + 16.0f) / 116.0f;
   const float x = (yv + cx / 500.0f) * kWhite[0];
@@ -106,9 +125,9 @@ inline void to_lab_hunt(float y, float cx, float cz, float& l, float& a, float& 
   const float r = clamp01(kToRgb[0] * x + kToRgb[1] * yw + kToRgb[2] * z);
   const float g = clamp01(kToRgb[3] * x + kToRgb[4] * yw + kToRgb[5] * z);
   const float bl = clamp01(kToRgb[6] * x + kToRgb[7] * yw + kToRgb[8] * z);
-  const float fx = lab_f((kToXyz[0] * r + kToXyz[1] * g + kToXyz[2] * bl) * kInvWhite[0]);
-  const float fy = lab_f((kToXyz[3] * r + kToXyz[4] * g + kToXyz[5] * bl) * kInvWhite[1]);
-  const float fz = lab_f((kToXyz[6] * r + kToXyz[7] * g + kToXyz[8] * bl) * kInvWhite[2]);
+  const float fx = lab_f<kTool>((kToXyz[0] * r + kToXyz[1] * g + kToXyz[2] * bl) * kInvWhite[0]);
+  const float fy = lab_f<kTool>((kToXyz[3] * r + kToXyz[4] * g + kToXyz[5] * bl) * kInvWhite[1]);
+  const float fz = lab_f<kTool>((kToXyz[6] * r + kToXyz[7] * g + kToXyz[8] * bl) * kInvWhite[2]);
   l = 116.0f * fy - 16.0f;
   a = 0.01f * l * (500.0f * (fx - fy));
   b = 0.01f * l * (200.0f * (fy - fz));
@@ -297,8 +316,9 @@ struct PixelConstants {
 
 // The per-pixel tail: filtered colours and features of both images -> FLIP error. `max_into`:
 // HDR keeps the larger of this exposure's error and what `out` holds.
-AOSUITE_SIMD_CLONES void finish_row(const float* const* v, PixelConstants pc, float* out, int w,
-                                    bool max_into) {
+template <bool kTool>
+inline void finish_row_body(const float* const* v, PixelConstants pc, float* out, int w,
+                            bool max_into) {
   // v: ref Y, Cx, Cz1, Cz2, test Y, Cx, Cz1, Cz2, ref dx, ddx, dy, ddy, test dx, ddx, dy, ddy
   const float norm = 1.0f / std::sqrt(2.0f);
   const float scale_low = kGpt / pc.pccmax;
@@ -323,11 +343,11 @@ AOSUITE_SIMD_CLONES void finish_row(const float* const* v, PixelConstants pc, fl
 #pragma GCC ivdep  // the 16 inputs are distinct rows, none of them `out`
   for (int x = 0; x < w; ++x) {
     float l1, a1, b1, l2, a2, b2;
-    to_lab_hunt(ry[x], rcx[x], rcz1[x] + rcz2[x], l1, a1, b1);
-    to_lab_hunt(ty[x], tcx[x], tcz1[x] + tcz2[x], l2, a2, b2);
+    to_lab_hunt<kTool>(ry[x], rcx[x], rcz1[x] + rcz2[x], l1, a1, b1);
+    to_lab_hunt<kTool>(ty[x], tcx[x], tcz1[x] + tcz2[x], l2, a2, b2);
     const float hyab =
         std::fabs(l1 - l2) + std::sqrt((a1 - a2) * (a1 - a2) + (b1 - b2) * (b1 - b2));
-    float cd = simd::pow_nonnegative(hyab, kGqc);
+    float cd = power<kTool>(hyab, kGqc);
     cd = cd < pc.pccmax ? cd * scale_low : kGpt + ((cd - pc.pccmax) * inv_high) * (1.0f - kGpt);
 
     const float edge_ref = std::sqrt(rdx[x] * rdx[x] + rdy[x] * rdy[x]);
@@ -335,11 +355,22 @@ AOSUITE_SIMD_CLONES void finish_row(const float* const* v, PixelConstants pc, fl
     const float point_ref = std::sqrt(rddx[x] * rddx[x] + rddy[x] * rddy[x]);
     const float point_test = std::sqrt(tddx[x] * tddx[x] + tddy[x] * tddy[x]);
     const float de = std::fabs(edge_ref - edge_test), dp = std::fabs(point_ref - point_test);
-    const float fd = std::sqrt(norm * (de > dp ? de : dp));  // ^qf, qf = 1/2
-    float e = simd::pow_nonnegative(cd, 1.0f - fd);
+    const float feature = norm * (de > dp ? de : dp);
+    const float fd = kTool ? std::pow(feature, 0.5f) : std::sqrt(feature);  // ^qf, qf = 1/2
+    float e = power<kTool>(cd, 1.0f - fd);
     e = e > 1.0f ? 1.0f : e;  // guards the approximation; the exact value is <= 1
     o[x] = max_into ? (e > o[x] ? e : o[x]) : e;
   }
+}
+
+AOSUITE_SIMD_CLONES void finish_row(const float* const* v, PixelConstants pc, float* out, int w,
+                                    bool max_into) {
+  finish_row_body<false>(v, pc, out, w, max_into);
+}
+
+void finish_row_as_tool(const float* const* v, PixelConstants pc, float* out, int w,
+                        bool max_into) {
+  finish_row_body<true>(v, pc, out, w, max_into);
 }
 
 // Normalised Y for the feature filters: Y / 116 + 16 / 116, in [0, 1].
@@ -350,7 +381,8 @@ AOSUITE_SIMD_CLONES void normalise_y(const float* y, float* out, int n) {
 
 // Rows [y0, y1) of the error map, for every exposure in turn (LDR: one, scale unused).
 void flip_band(const Source& s, const Filters& f, PixelConstants pc,
-               const std::vector<float>& scales, float* map, int w, int h, int y0, int y1) {
+               const std::vector<float>& scales, bool as_tool, float* map, int w, int h, int y0,
+               int y1) {
   const int pad = f.radius;
   const int padded = w + 2 * pad;
   const int ring = 2 * f.radius + 1;
@@ -422,7 +454,7 @@ void flip_band(const Source& s, const Filters& f, PixelConstants pc,
         column(base + 6, f.ddg, 3);  // ddy
       }
       for (int i = 0; i < 16; ++i) v[i] = acc.data() + std::size_t(i) * W;
-      finish_row(v, pc, map + std::size_t(y) * W, w, e > 0);
+      (as_tool ? finish_row_as_tool : finish_row)(v, pc, map + std::size_t(y) * W, w, e > 0);
     }
   }
 }
@@ -542,10 +574,12 @@ FlipResult run(const Source& s, int w, int h, const Options& o, const std::vecto
     return PixelConstants{cmax, kGpc * cmax};
   }();
   float* map = r.error_map.data();
-  parallel_rows(w, h, [&](int y0, int y1) { flip_band(s, f, pc, scales, map, w, h, y0, y1); });
+  parallel_rows(w, h, [&](int y0, int y1) {
+    flip_band(s, f, pc, scales, o.tool_arithmetic, map, w, h, y0, y1);
+  });
   // NaN cannot arise from finite inputs; this keeps the promise for any input.
   for (float& x : r.error_map) x = x >= 0.0f ? x : 0.0f;
-  pool(r, o.tool_float_pooling);
+  pool(r, o.tool_arithmetic);
   return r;
 }
 

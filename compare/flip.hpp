@@ -30,11 +30,14 @@ struct Options {
   ToneMapper tone_mapper = ToneMapper::aces;
   std::optional<float> start_exposure, stop_exposure;
   std::optional<int> num_exposures;
-  // Pool as the tool does, in float: its mean is one chain of float additions in row order,
-  // its weighted percentiles a float running sum over the sorted map. Off by default: the
-  // chains drift (at 3840x2160, ~1e-4 on the mean and ~5e-4 on the weighted quartiles), and
-  // the exact values need no sort of the whole map.
-  bool tool_float_pooling = false;
+  // The tool's own arithmetic, for its numbers to the bit: glibc's powf for the cube root and
+  // the two powers of each pixel's error, where the fast path uses vector approximations within
+  // a few ulp of it; and pooling in float as the tool does (its mean one chain of float
+  // additions in row order, its weighted percentiles a float running sum over the sorted map).
+  // Off by default: the chains drift (at 3840x2160, ~1e-4 on the mean and ~5e-4 on the
+  // weighted quartiles), the exact values need no sort of the whole map, and the scalar powers
+  // are slower.
+  bool tool_arithmetic = false;
 };
 
 // Linear-light RGB floats, 3 per pixel, rows `stride` floats apart (>= 3 * width). What a
@@ -49,7 +52,7 @@ struct RgbFloatView {
 // The tool's pooled values over the error map (tool/pooling.h): the mean, the weighted
 // median and quartiles (the smallest error e, in sorted order, at which the running sum of
 // errors exceeds p times their total; 0 when all are 0), min and max. Differences from the
-// tool: sums are exact (double) unless Options::tool_float_pooling, and max of an all-zero
+// tool: sums are exact (double) unless Options::tool_arithmetic, and max of an all-zero
 // map is 0 (the tool reports FLT_MIN).
 struct FlipResult {
   int width = 0, height = 0;

@@ -39,8 +39,8 @@ struct Request {
   // width * height flags (row-major): when given, means, percentiles and errors cover only the
   // pixels whose flag is non-zero (geometry, not sky); the map still shows every pixel.
   const std::vector<std::uint8_t>* counted = nullptr;
-  // FLIP: pool as NVlabs' tool does, summing in float in its order (`--flip-pooling tool`), to
-  // print its numbers to their 6 decimals; exact (double) sums otherwise.
+  // FLIP: NVlabs' tool's own arithmetic (`--flip-pooling tool`: flip::Options::tool_arithmetic,
+  // its powf and its float pooling), to print its numbers; fast powers and exact sums otherwise.
   bool tool_pooling = false;
 };
 

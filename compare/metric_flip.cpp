@@ -28,7 +28,7 @@ Measurement measure_flip(const Picture& reference, const Picture& test, const Re
   RgbaImage map;
   const bool hdr = reference.is_float && !reference.floats.srgb;
   flip::Options o;
-  o.tool_float_pooling = request.tool_pooling;
+  o.tool_arithmetic = request.tool_pooling;
   if (!reference.is_float) {
     f = flip::compare_ldr(reference.rgba, test.rgba, o);
   } else {

@@ -1,8 +1,8 @@
 // FLIP and SSIM against the numbers their reference implementations produced on the same
 // pairs (tests/data/metric_oracle.json, written by tests/oracles/metric_oracle.py from
 // NVlabs/flip v1.6 and scikit-image 0.19): FLIP mean within 2e-6 and pooled values within
-// 2e-5, and with the tool's float pooling its printed 6 decimals within one unit; SSIM within
-// 1e-6. The
+// 2e-5, and with the tool's arithmetic (`--flip-pooling tool`) its floats to the bit; SSIM
+// within 1e-6. The
 // pairs are regenerated here (tests/metric_pairs.hpp). AOSUITE_METRIC_ORACLE overrides the JSON
 // (the oracle-live test points it at fresh numbers).
 #include <fmt/format.h>
@@ -85,12 +85,12 @@ TEST(MetricOracle, FlipAndSsimMatchTheReferenceImplementations) {
       EXPECT_EQ(r.num_exposures, f.at("num_exposures").get<int>());
     }
     ++flip_checked;
-    // The tool's float pooling (`--flip-pooling tool`), each pooled value as the tool prints it
-    // (6 decimals; the oracle holds the tool's floats, checked against its printed CSV by
-    // tests/oracles/metric_oracle.py --flip-tool): never a unit of the 6th decimal off, and the
-    // same string more often than exact pooling gives.
+    // The tool's arithmetic (`--flip-pooling tool`): every pooled value the tool's float to the
+    // bit (the oracle holds them with 9 significant digits, which name one float each; checked
+    // against the tool's printed CSV by tests/oracles/metric_oracle.py --flip-tool), so printed
+    // with its 6 decimals they are its output. Exact pooling prints the same less often.
     flip::Options tool_like = o;
-    tool_like.tool_float_pooling = true;
+    tool_like.tool_arithmetic = true;
     const auto t = flip::compare(p.a, p.b, p.hdr, tool_like);
     tool_mean_dev.update(std::abs(t.mean - f.at("mean").get<double>()), p.name);
     const auto printed = [](double v) { return fmt::format("{:.6f}", float(v)); };
@@ -100,12 +100,14 @@ TEST(MetricOracle, FlipAndSsimMatchTheReferenceImplementations) {
           std::tuple{"first_weighted_quartile", t.first_weighted_quartile,
                      r.first_weighted_quartile},
           std::tuple{"third_weighted_quartile", t.third_weighted_quartile,
-                     r.third_weighted_quartile}}) {
+                     r.third_weighted_quartile},
+          std::tuple{"min", t.min, r.min}}) {
+      EXPECT_EQ(tool, f.at(key).get<float>()) << key;
       const std::string want = printed(f.at(key).get<double>());
-      EXPECT_LE(std::abs(std::stod(printed(tool)) - std::stod(want)), 1.5e-6) << key;
       tool_printed += printed(tool) == want, exact_printed += printed(exact) == want;
       ++printed_values;
     }
+    EXPECT_EQ(tool_printed, printed_values);
 
     auto check_ssim = [&](const char* key, double got) {
       if (!e.contains(key)) return;
@@ -139,9 +141,9 @@ TEST(MetricOracle, FlipAndSsimMatchTheReferenceImplementations) {
   }
   EXPECT_GT(tool_printed, exact_printed);
   std::printf(
-      "FLIP: %d pairs, max |mean - tool| %.3g (%s), with tool_float_pooling %.3g (%s), max "
+      "FLIP: %d pairs, max |mean - tool| %.3g (%s), with tool_arithmetic %.3g (%s), max "
       "|pooled - tool| %.3g (%s); printed as the tool prints (6 decimals), %d of %d values "
-      "equal with tool_float_pooling, %d with exact pooling\n"
+      "equal with tool_arithmetic, %d with exact pooling\n"
       "SSIM: %d values, max |ssim - skimage| %.3g (%s)\n",
       flip_checked, mean_dev.value, mean_dev.where.c_str(), tool_mean_dev.value,
       tool_mean_dev.where.c_str(), pooled_dev.value, pooled_dev.where.c_str(), tool_printed,
