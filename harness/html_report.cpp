@@ -197,6 +197,7 @@ void write_html_report(const RunResults& run, const fs::path& report_dir,
     const std::string show = shown(rel);
     into[role] = url(show);
     into[role + "_file"] = show != rel && inside(cases_dir, rel) ? "cases/" + rel : "";
+    into[role + "_stops"] = show != rel ? stops_of_preview(show) : 0;
   };
 
   // The table's rows are drawn by the page from this, a screenful at a time: a report of

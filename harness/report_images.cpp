@@ -26,13 +26,19 @@ bool browser_shows(const fs::path& file) {
   return ext == ".png" || ext == ".jpg" || ext == ".jpeg" || ext == ".webp" || ext == ".bmp";
 }
 
-// Whether `name` is `stem`.<16 hex digits>.png: a preview of the file `stem`, of any bytes.
+// `.s<k>` at the end of a preview's stem: the stops it is darkened by (0 when absent).
+std::string stops_suffix(int stops) { return stops ? fmt::format(".s{}", stops) : ""; }
+
+// Whether `name` is `stem`.<16 hex digits>[.s<k>].png: a preview of the file `stem`, of any
+// bytes.
 bool is_preview_of(const std::string& name, const std::string& stem) {
   const std::size_t hex = stem.size() + 1;
-  if (name.size() != hex + 16 + 4 || !name.starts_with(stem + ".") || !name.ends_with(".png"))
+  if (name.size() < hex + 16 + 4 || !name.starts_with(stem + ".") || !name.ends_with(".png"))
     return false;
-  return std::all_of(name.begin() + long(hex), name.end() - 4,
-                     [](unsigned char c) { return std::isxdigit(c); });
+  const std::string rest = name.substr(hex + 16, name.size() - hex - 16 - 4);
+  return std::all_of(name.begin() + long(hex), name.begin() + long(hex + 16),
+                     [](unsigned char c) { return std::isxdigit(c); }) &&
+         (rest.empty() || stops_suffix(stops_of_preview(name)) == rest);
 }
 
 // Removes the previews of `file` other than `keep`, and their thumbnails: what an earlier
@@ -61,9 +67,32 @@ bool inside(const fs::path& dir, const std::string& rel) {
          fs::is_regular_file(fs::symlink_status(dir / r, ec));
 }
 
-RgbaImage display_rgba8(const Picture& p) {
+int preview_stops(const Picture& p) {
+  if (!p.is_float || p.floats.srgb) return 0;
+  float hi = 0;
+  for (float v : p.floats.data)
+    if (std::isfinite(v)) hi = std::max(hi, v);
+  int k = 0;
+  while (k < 24 && hi > std::ldexp(1.0f, k)) ++k;
+  return k;
+}
+
+int stops_of_preview(const std::string& rel) {
+  if (!rel.ends_with(".png")) return 0;
+  const std::size_t dot = rel.rfind('.', rel.size() - 5);
+  if (dot == std::string::npos || rel.compare(dot, 2, ".s") != 0) return 0;
+  const std::string digits = rel.substr(dot + 2, rel.size() - 4 - dot - 2);
+  if (digits.empty() || digits.size() > 2 ||
+      !std::ranges::all_of(digits, [](unsigned char c) { return std::isdigit(c) != 0; }))
+    return 0;
+  const int k = std::stoi(digits);
+  return k <= 24 && stops_suffix(k) == rel.substr(dot, rel.size() - 4 - dot) ? k : 0;
+}
+
+RgbaImage display_rgba8(const Picture& p, int stops) {
   if (!p.is_float) return p.rgba;
   const FloatImage& f = p.floats;
+  const float gain = std::ldexp(1.0f, -stops);
   RgbaImage out(f.width, f.height);
   for (int y = 0; y < f.height; ++y) {
     const float* in = f.row(y);
@@ -73,6 +102,7 @@ RgbaImage display_rgba8(const Picture& p) {
         float v =
             in[std::size_t(x) * std::size_t(f.channels) + std::size_t(f.channels == 3 ? k : 0)];
         if (std::isnan(v)) v = 0;  // a NaN sample is black, not whatever a cast makes of it
+        v *= gain;
         px[k] = byte_of(f.srgb ? v : linear_to_srgb(v));
       }
       px[3] = 255;
@@ -87,12 +117,20 @@ std::string shown_image(const fs::path& dir, const std::string& rel) {
   const fs::path file = dir / rel;
   try {
     const std::vector<unsigned char> bytes = read_file(file, kMaxFileBytes);
-    const std::string name = fmt::format("{}.{:016x}.png", file.filename().string(),
+    const std::string stem = fmt::format("{}.{:016x}", file.filename().string(),
                                          XXH3_64bits(bytes.data(), bytes.size()));
+    // Named by these bytes: made from them (whatever its stops, which the bytes decide).
+    for (int k = 0; k <= 24; ++k) {
+      const std::string made =
+          (fs::path(rel).parent_path() / (stem + stops_suffix(k) + ".png")).string();
+      if (inside(dir, made)) return made;
+    }
+    const Picture picture = decode_picture(bytes, file.string(), kMaxFileBytes);
+    const int stops = preview_stops(picture);
+    const std::string name = stem + stops_suffix(stops) + ".png";
     const std::string out = (fs::path(rel).parent_path() / name).string();
-    if (inside(dir, out)) return out;  // named by these bytes: made from them
-    const RgbaImage shown = display_rgba8(decode_picture(bytes, file.string(), kMaxFileBytes));
-    write_report_file(file.parent_path() / name, encode_png_rgba8(shown, 6));
+    write_report_file(file.parent_path() / name,
+                      encode_png_rgba8(display_rgba8(picture, stops), 6));
     remove_old_previews(file, name);
     return out;
   } catch (const std::exception&) {

@@ -17,13 +17,22 @@ namespace aosuite::harness {
 // anything else on the machine.
 bool inside(const std::filesystem::path& dir, const std::string& rel);
 
-// A picture as a screen shows it, 8-bit sRGB RGBA: 8-bit images as they are; float ones
-// clamped to [0, 1] (NaN as 0) and, when linear (EXR, HDR, float TIFF), sRGB-encoded, with no
-// other tone mapping, so a value of 1 and above is white; one channel as grey.
-RgbaImage display_rgba8(const Picture& p);
+// A picture as a screen shows it, 8-bit sRGB RGBA: 8-bit images as they are; float ones times
+// 2^-stops, clamped to [0, 1] (NaN as 0) and, when linear (EXR, HDR, float TIFF), sRGB-encoded,
+// with no other tone mapping; one channel as grey.
+RgbaImage display_rgba8(const Picture& p, int stops = 0);
+
+// How many stops a linear float picture's preview is darkened by so that its brightest finite
+// sample is not clipped: the least k >= 0 (at most 24) with max <= 2^k. 0 for 8-bit and
+// sRGB-encoded (16-bit) pictures. The page's exposure control brings the light back.
+int preview_stops(const Picture& p);
+
+// The stops a preview named by shown_image() is darkened by: k for `….s<k>.png`, else 0.
+int stops_of_preview(const std::string& rel);
 
 // What the page shows for the image `rel` (relative to `dir`): `rel` itself when a browser
-// shows its format, else its PNG preview beside it, `<file name>.<hash>.png`, named by the
+// shows its format, else its PNG preview beside it, `<file name>.<hash>.png` (`.<hash>.s<k>.png`
+// when darkened by k stops, preview_stops()), named by the
 // hash of the image's bytes: an image that changes (a later run, a bless, a copied report)
 // gets a preview of its own, and the old one is removed. Empty when `rel` is no plain file
 // inside `dir` or cannot be read.

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <fstream>
 #include <functional>
+#include <limits>
 
 #include "compare/opencv.hpp"
 #include "harness/escape.hpp"
@@ -514,6 +515,31 @@ TEST(ReportImages, FloatPicturesAreClampedAndSrgbEncodedForTheScreen) {
   EXPECT_EQ(px(display_rgba8(p), 0), (std::vector<int>{128, 0, 255, 255}));
   p.floats = {.width = 1, .height = 1, .channels = 1, .data = {0.2f}};
   EXPECT_EQ(px(display_rgba8(p), 0), (std::vector<int>{124, 124, 124, 255}));
+}
+
+// A linear float preview is darkened by the whole stops that keep its brightest finite sample
+// from clipping, and its name says how many.
+TEST(ReportImages, BrightFloatPreviewsAreDarkenedByWholeStops) {
+  Picture p;
+  p.is_float = true;
+  const auto stops = [&](std::vector<float> data) {
+    p.floats = {.width = int(data.size()), .height = 1, .channels = 1, .data = std::move(data)};
+    return preview_stops(p);
+  };
+  EXPECT_EQ(stops({0.0f, 0.5f, 1.0f}), 0);
+  EXPECT_EQ(stops({1.5f}), 1);
+  EXPECT_EQ(stops({4.0f, 0.0f}), 2);
+  EXPECT_EQ(stops({4.01f}), 3);
+  EXPECT_EQ(stops({0.2f, std::numeric_limits<float>::infinity(), std::nanf("")}), 0);
+  EXPECT_EQ(stops({1e30f}), 24);
+  p.floats.srgb = true;
+  EXPECT_EQ(preview_stops(p), 0);  // 16-bit: sRGB-encoded, never above 1
+  p.floats = {.width = 1, .height = 1, .channels = 1, .data = {1.5f}};
+  EXPECT_EQ(display_rgba8(p, 1).data()[0], 225);  // 1.5 / 2 = 0.75: sRGB 0.8808
+  EXPECT_EQ(stops_of_preview("x/ao.exr.0123456789abcdef.s3.png"), 3);
+  EXPECT_EQ(stops_of_preview("x/ao.exr.0123456789abcdef.png"), 0);
+  for (const char* odd : {"a.s03.png", "a.s25.png", "a.sx.png", "a.s.png", "a.s3.exr"})
+    EXPECT_EQ(stops_of_preview(odd), 0) << odd;
 }
 
 TEST(Escape, MarkupCharactersAreEscaped) {

@@ -7,7 +7,9 @@
 
 #include <cmath>
 #include <fstream>
+#include <iterator>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "compare/opencv.hpp"
 #include "exr_fixture.hpp"
@@ -185,6 +187,43 @@ TEST_F(ReportView, APreviewIsMadeAgainWhenItsExrChanges) {
   ASSERT_EQ(check().rc, 1);
   EXPECT_EQ(by_id(data(), "ao.exr").at("images").at(0).at("new"), after);
   EXPECT_EQ(fs::last_write_time(dir_ / "rep" / after), written);
+}
+
+// A float image brighter than 1 keeps its highlights: its preview is darkened by whole stops
+// (named .s<k>.png), and the page's exposure control, an SVG filter whose table maps each
+// 8-bit code c to sRGB(min(1, linear(c) * 2^(stops + exposure))), brings the light back.
+TEST_F(ReportView, BrightFloatImagesArePreviewedDarkenedUnderAnExposureControl) {
+  test::write_exr(dir_ / "expected" / "ao.exr", 12, 9, {"Y"}, std::vector<float>(12 * 9, 3.0f));
+  grey("actual", 0.5f);
+  ASSERT_EQ(check().rc, 1);
+  const nlohmann::json image = by_id(data(), "ao.exr").at("images").at(0);
+  EXPECT_EQ(image.at("golden_stops"), 2);  // 3 <= 2^2
+  EXPECT_EQ(image.at("new_stops"), 0);     // 0.5 <= 1: as it is
+  const std::string golden = image.at("golden"), fresh = image.at("new");
+  EXPECT_TRUE(golden.ends_with(".s2.png")) << golden;
+  EXPECT_FALSE(fresh.ends_with(".s0.png")) << fresh;
+  const unsigned char g = srgb8(0.75), n = srgb8(0.5);
+  EXPECT_EQ(read_png_rgba8(dir_ / "rep" / golden).at<cv::Vec4b>(0, 0), cv::Vec4b(g, g, g, 255));
+  EXPECT_EQ(read_png_rgba8(dir_ / "rep" / fresh).at<cv::Vec4b>(0, 0), cv::Vec4b(n, n, n, 255));
+
+  const std::string panel = dom("#case=ao.exr");
+  EXPECT_NE(panel.find("<label class=\"exposure\">"), std::string::npos);
+  EXPECT_NE(
+      panel.find("<img src=\"" + golden + "\" alt=\"golden\" style=\"filter:url(#exposure2)\">"),
+      std::string::npos)
+      << panel;
+  const std::size_t f = panel.find("<filter id=\"exposure2\"");
+  ASSERT_NE(f, std::string::npos) << panel;
+  const std::string tag = "tableValues=\"";
+  const std::size_t t0 = panel.find(tag, f) + tag.size();
+  std::istringstream table(panel.substr(t0, panel.find('"', t0) - t0));
+  std::vector<double> entries{std::istream_iterator<double>(table), {}};
+  ASSERT_EQ(entries.size(), 256u);
+  EXPECT_DOUBLE_EQ(entries[g], 1.0);  // 0.75 * 4 = 3: white at exposure 0
+  // 0.125 * 4 = 0.5, sRGB 0.7354 (to the 8-bit code's rounding)
+  EXPECT_NEAR(entries[srgb8(0.125)], 0.7354, 0.01);
+  EXPECT_EQ(panel.find("<figure class=\"missing\">"), std::string::npos)
+      << "a picture did not load";
 }
 
 // What a tolerance sets apart is drawn over the diff: the pixels its ignore box and mask leave

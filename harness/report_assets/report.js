@@ -127,8 +127,45 @@
   const detail = $("detail");
   // A picture and its caption; `file`, when given, is the image itself (an EXR), of which `src`
   // is the PNG preview: linked beside it. A picture that cannot be loaded says so.
-  const fig = (src, caption, file) =>
-    !src && !file ? "" : `<figure>${src ? `<img src="${esc(url(src))}" alt="${esc(caption)}">` : ""}` +
+  // --- exposure: a float image's preview holds sRGB(v / 2^stops) (stops: enough that its
+  // brightest sample is not clipped); an SVG filter per stops maps each 8-bit code back to
+  // sRGB(min(1, v * 2^exposure)), so one control sets every float picture's exposure ---------
+  let exposure = 0;
+  const toLinear = (c) => (c <= 0.04045 ? c / 12.92 : Math.pow((c + 0.055) / 1.055, 2.4));
+  const toSrgb = (l) => (l <= 0.0031308 ? 12.92 * l : 1.055 * Math.pow(l, 1 / 2.4) - 0.055);
+  document.body.insertAdjacentHTML("beforeend", "<svg id=exposure-filters width=0 height=0 style=position:absolute aria-hidden=true></svg>");
+  const filterDefs = $("exposure-filters");
+  function exposureTable(stops) {
+    const gain = Math.pow(2, stops + exposure), t = [];
+    for (let i = 0; i < 256; ++i) t.push(toSrgb(Math.min(1, toLinear(i / 255) * gain)).toFixed(5));
+    return t.join(" ");
+  }
+  function exposureFilter(stops) {
+    const id = "exposure" + stops;
+    if (!document.getElementById(id)) {
+      filterDefs.insertAdjacentHTML("beforeend", `<filter id=${id} color-interpolation-filters=sRGB><feComponentTransfer>` +
+        ["R", "G", "B"].map((c) => `<feFunc${c} type=table tableValues="${exposureTable(stops)}"/>`).join("") +
+        "</feComponentTransfer></filter>");
+    }
+    return id;
+  }
+  function setExposure(stops) {
+    exposure = stops;
+    for (const f of filterDefs.querySelectorAll("filter")) {
+      const table = exposureTable(+f.id.slice(8));
+      for (const fn of f.querySelectorAll("[type=table]")) fn.setAttribute("tableValues", table);
+    }
+    for (const out of document.querySelectorAll(".exposure output")) out.textContent = stops;
+    for (const input of document.querySelectorAll(".exposure input")) input.value = stops;
+  }
+  document.addEventListener("input", (e) => {
+    if (e.target.closest && e.target.closest(".exposure")) setExposure(+e.target.value);
+  });
+  // The style that puts a float picture (a preview: `file` is its float file) under the
+  // exposure control.
+  const exposed = (file, stops) => (file ? ` style="filter:url(#${exposureFilter(stops || 0)})"` : "");
+  const fig = (src, caption, file, stops) =>
+    !src && !file ? "" : `<figure>${src ? `<img src="${esc(url(src))}" alt="${esc(caption)}"${exposed(file, stops)}>` : ""}` +
       `<figcaption>${esc(caption)}${file ? ` — <a href="${esc(file)}">${esc(file.split("/").pop())}</a>${src ? " (sRGB preview)" : ""}` : ""}</figcaption></figure>`;
   // The diff with what the tolerance set apart drawn over it: ignored pixels (boxes and mask)
   // outlined in blue, regions tinted in their colours.
@@ -156,10 +193,13 @@
       h += "<table class=gates><tr><th>gate</th><th>value</th><th>limit</th><th>margin</th></tr>" +
         v.gates.map((g) => `<tr class="${g.pass ? "PASS" : "FAIL"}"><td>${esc(g.gate)}</td><td class=num>${esc(g.value)}</td><td class=num>${esc(g.limit)}</td><td class=num>${esc(g.margin)}</td></tr>`).join("") + "</table>";
     }
-    h += `<div class=images>${fig(v.golden, "golden", v.golden_file)}${fig(v.new, "new", v.new_file)}${diffFig(v)}${fig(v.heat, "FLIP error (magma)")}${fig(v.regions, "region map")}`;
+    if (v.golden_file || v.new_file) {
+      h += `<p><label class=exposure>exposure <input type=range min=-8 max=8 step=0.5 value=${exposure} aria-label=exposure> <output>${exposure}</output> stops</label></p>`;
+    }
+    h += `<div class=images>${fig(v.golden, "golden", v.golden_file, v.golden_stops)}${fig(v.new, "new", v.new_file, v.new_stops)}${diffFig(v)}${fig(v.heat, "FLIP error (magma)")}${fig(v.regions, "region map")}`;
     if (!brief && v.golden && v.new && !v.identical) {
-      h += `<figure><div class=swap><img class=golden src="${esc(url(v.golden))}" alt=golden><img class=new src="${esc(url(v.new))}" alt=new></div><figcaption>golden; hover for new</figcaption></figure>`;
-      h += `<figure><div class=slider><img src="${esc(url(v.golden))}" alt=golden><img class=top src="${esc(url(v.new))}" alt=new><input type=range min=0 max=100 value=50 aria-label="new vs golden"></div><figcaption>slider: new (left) over golden</figcaption></figure>`;
+      h += `<figure><div class=swap><img class=golden src="${esc(url(v.golden))}" alt=golden${exposed(v.golden_file, v.golden_stops)}><img class=new src="${esc(url(v.new))}" alt=new${exposed(v.new_file, v.new_stops)}></div><figcaption>golden; hover for new</figcaption></figure>`;
+      h += `<figure><div class=slider><img src="${esc(url(v.golden))}" alt=golden${exposed(v.golden_file, v.golden_stops)}><img class=top src="${esc(url(v.new))}" alt=new${exposed(v.new_file, v.new_stops)}><input type=range min=0 max=100 value=50 aria-label="new vs golden"></div><figcaption>slider: new (left) over golden</figcaption></figure>`;
     }
     return h + "</div>";
   }
