@@ -12,6 +12,7 @@
 #include <thread>
 #include <vector>
 
+#include "renderer/gl/gl_context.hpp"
 #include "renderer/params.hpp"
 #include "renderer/passes/ao_uniforms.hpp"
 #include "renderer/passes/blur_pass.hpp"
@@ -71,6 +72,17 @@ Stats geometry_stats(const Images& img, float floor = 0.95f) {
 
 Images render(const Scene& scene, std::size_t view, const RenderSettings& s) {
   return shared_renderer().render(scene, scene.views.at(view), s);
+}
+
+// gl-info and pass tables say GPU or software from the renderer where the EGL platform names
+// no device (surfaceless: NVIDIA's driver in a container offers no EGL device, yet renders).
+TEST(GlProbe, SoftwareRenderersAreToldFromGpusByName) {
+  for (const char* cpu :
+       {"llvmpipe (LLVM 15.0.6, 256 bits)", "softpipe", "Mesa swrast", "Google SwiftShader"})
+    EXPECT_TRUE(software_renderer(cpu)) << cpu;
+  for (const char* gpu : {"NVIDIA H200/PCIe/SSE2", "AMD Radeon RX 7900 XTX (radeonsi, navi31)",
+                          "Mesa Intel(R) UHD Graphics 630 (CFL GT2)"})
+    EXPECT_FALSE(software_renderer(gpu)) << gpu;
 }
 
 TEST(Renderer, FlatUnoccludedPlaneIsWhite) {

@@ -243,6 +243,9 @@ std::vector<GlProbe> detail::probe_egl() {
     try {
       const CurrentEglContext context(display(), p.source);
       describe_current(egl_proc, p);
+      // The surfaceless platform names no device: its renderer says what draws (a GPU's driver
+      // may offer it where no EGL device is listed, as NVIDIA's does in a container).
+      if (p.device < 0) p.hardware = !software_renderer(p.renderer);
     } catch (const std::runtime_error& e) {
       p.error = e.what();
     }

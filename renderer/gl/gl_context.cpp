@@ -73,6 +73,12 @@ void GlContext::adopt_current(void* (*get_proc)(const char*), std::string source
   glBindVertexArray(vertex_array);
 }
 
+bool software_renderer(std::string_view renderer) {
+  for (const std::string_view name : {"llvmpipe", "softpipe", "swrast", "SwiftShader"})
+    if (renderer.find(name) != std::string_view::npos) return true;
+  return false;
+}
+
 void detail::describe_current(void* (*get_proc)(const char*), GlProbe& probe) {
   // Local pointers, not the shared table: gl-info probes backends the process may not render
   // with.

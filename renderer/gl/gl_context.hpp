@@ -6,6 +6,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace aosuite::renderer {
@@ -66,6 +67,10 @@ struct GlProbe {
   std::string error;               // why no context could be made, else empty
 };
 std::vector<GlProbe> probe_gl_backends();
+
+// Whether a GL_RENDERER string names a software rasteriser (Mesa's llvmpipe, softpipe or swrast,
+// SwiftShader): how the surfaceless platform, which names no device, tells a GPU from the CPU.
+bool software_renderer(std::string_view renderer);
 
 namespace detail {
 // The backends, each in its own file; `device` < 0 picks as `auto` does.
