@@ -517,7 +517,7 @@ void add_bless_command(CLI::App& app, int& rc) {
   cmd->add_flag("--from-report", a->from_report,
                 "accept the last report's images (--report DIR) instead of rendering");
   cmd->add_flag("--failed", a->failed,
-                "accept every FAIL and NEW case of the last report, from its images (with "
+                "accept every FAIL, NEW and WARN case of the last report, from its images (with "
                 "--report DIR and no suite: the report's own suite)");
   guarded(cmd, rc, "bless", [a] { return escaped_errors([&] { return run_bless(*a); }); });
 }

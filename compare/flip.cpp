@@ -80,7 +80,7 @@ inline float clamp01(float v) {  // NaN -> 0, as the tool's Min(Max(v, 0), 1)
 // x^y for x >= 0. kTool (Options::tool_arithmetic): glibc's powf, as the tool calls it; else a
 // vector approximation within a few ulp of it.
 template <bool kTool>
-inline float power(float x, float y) {
+[[gnu::always_inline]] inline float power(float x, float y) {
   if constexpr (kTool) {
     return std::pow(x, y);
   } else {
@@ -89,7 +89,7 @@ inline float power(float x, float y) {
 }
 
 template <bool kTool>
-inline float lab_f(float t) {
+[[gnu::always_inline]] inline float lab_f(float t) {
   constexpr float delta = 6.0f / 29.0f;
   constexpr float delta_square = delta * delta;
   constexpr float delta_cube = delta * delta_square;
@@ -117,7 +117,8 @@ inline void to_ycxcz(float r, float g, float b, float& y, float& cx, float& cz) 
 
 // Filtered YCxCz -> linear RGB, clamped -> CIELab with Hunt's adjustment (L, a', b').
 template <bool kTool>
-inline void to_lab_hunt(float y, float cx, float cz, float& l, float& a, float& b) {
+[[gnu::always_inline]] inline void to_lab_hunt(float y, float cx, float cz, float& l, float& a,
+                                               float& b) {
   const float yv = (y + 16.0f) / 116.0f;
   const float x = (yv + cx / 500.0f) * kWhite[0];
   const float yw = yv * kWhite[1];
@@ -316,9 +317,11 @@ struct PixelConstants {
 
 // The per-pixel tail: filtered colours and features of both images -> FLIP error. `max_into`:
 // HDR keeps the larger of this exposure's error and what `out` holds.
+// Always inlined: each target clone of finish_row below must compile the loop for its own
+// instruction set (a shared out-of-line body would be baseline x86-64 only).
 template <bool kTool>
-inline void finish_row_body(const float* const* v, PixelConstants pc, float* out, int w,
-                            bool max_into) {
+[[gnu::always_inline]] inline void finish_row_body(const float* const* v, PixelConstants pc,
+                                                   float* out, int w, bool max_into) {
   // v: ref Y, Cx, Cz1, Cz2, test Y, Cx, Cz1, Cz2, ref dx, ddx, dy, ddy, test dx, ddx, dy, ddy
   const float norm = 1.0f / std::sqrt(2.0f);
   const float scale_low = kGpt / pc.pccmax;

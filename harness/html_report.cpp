@@ -92,7 +92,8 @@ Nearest nearest_gate(const CaseResult& c) {
   Nearest n;
   double worst = HUGE_VAL;
   for (const ImageVerdict& v : c.images) {
-    if (v.status != Status::kPass && v.status != Status::kFail) continue;
+    if (v.status != Status::kPass && v.status != Status::kFail && v.status != Status::kWarn)
+      continue;
     // Which image, when the case has several.
     const std::string of = c.images.size() > 1 ? v.image + ": " : "";
     if (c.tolerance.resemble) {
@@ -228,11 +229,14 @@ void write_html_report(const RunResults& run, const fs::path& report_dir,
     }
     // The thumbnail: the first gated image (the golden where there is no new one).
     std::string thumb;
+    nlohmann::json thumb_stops;  // a float image's: its preview's stops, for the exposure filter
     if (!c.images.empty()) {
       const std::string& first = c.images.front().image;
       std::string rel = file_of(c, first);
       if (rel.empty() || !inside(cases_dir, rel)) rel = file_of(c, "golden:" + first);
-      thumb = url(thumbnail(cases_dir, shown(rel)));
+      const std::string show = shown(rel);
+      thumb = url(thumbnail(cases_dir, show));
+      if (show != rel) thumb_stops = stops_of_preview(show);
     }
     nlohmann::json about = nlohmann::json::object();
     for (const auto& [label, value] : c.labels) about[printable(label)] = printable(value);
@@ -258,6 +262,7 @@ void write_html_report(const RunResults& run, const fs::path& report_dir,
                     {"delta", delta},
                     {"seconds", std::round(c.seconds * 100) / 100},
                     {"thumb", thumb},
+                    {"thumb_stops", thumb_stops},
                     {"allowed", c.tolerance.max_mismatch_percent},
                     {"resemble", c.tolerance.resemble},
                     {"about", about},

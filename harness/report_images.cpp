@@ -19,6 +19,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
+constexpr int kMaxStops = 24;
+
 // The formats every browser draws in an <img>; any other image gets a preview.
 bool browser_shows(const fs::path& file) {
   std::string ext = file.extension().string();
@@ -26,11 +28,11 @@ bool browser_shows(const fs::path& file) {
   return ext == ".png" || ext == ".jpg" || ext == ".jpeg" || ext == ".webp" || ext == ".bmp";
 }
 
-// `.s<k>` at the end of a preview's stem: the stops it is darkened by (0 when absent).
-std::string stops_suffix(int stops) { return stops ? fmt::format(".s{}", stops) : ""; }
+// `.s<k>` at the end of a preview's stem: the stops it is darkened by.
+std::string stops_suffix(int stops) { return fmt::format(".s{}", stops); }
 
 // Whether `name` is `stem`.<16 hex digits>[.s<k>].png: a preview of the file `stem`, of any
-// bytes.
+// bytes (without .s<k>: one an earlier aosuite made, clipped at 1, to be removed).
 bool is_preview_of(const std::string& name, const std::string& stem) {
   const std::size_t hex = stem.size() + 1;
   if (name.size() < hex + 16 + 4 || !name.starts_with(stem + ".") || !name.ends_with(".png"))
@@ -69,11 +71,17 @@ bool inside(const fs::path& dir, const std::string& rel) {
 
 int preview_stops(const Picture& p) {
   if (!p.is_float || p.floats.srgb) return 0;
-  float hi = 0;
+  // The 99.9th percentile of the finite samples, not their maximum: a few fireflies must not
+  // darken the whole picture into the lowest codes; they clip, as on a screen.
+  std::vector<float> finite;
+  finite.reserve(p.floats.data.size());
   for (float v : p.floats.data)
-    if (std::isfinite(v)) hi = std::max(hi, v);
+    if (std::isfinite(v)) finite.push_back(v);
+  if (finite.empty()) return 0;
+  const auto at = finite.begin() + std::ptrdiff_t(finite.size() * 999 / 1000);
+  std::nth_element(finite.begin(), at, finite.end());
   int k = 0;
-  while (k < 24 && hi > std::ldexp(1.0f, k)) ++k;
+  while (k<kMaxStops&& * at> std::ldexp(1.0f, k)) ++k;
   return k;
 }
 
@@ -86,7 +94,7 @@ int stops_of_preview(const std::string& rel) {
       !std::ranges::all_of(digits, [](unsigned char c) { return std::isdigit(c) != 0; }))
     return 0;
   const int k = std::stoi(digits);
-  return k <= 24 && stops_suffix(k) == rel.substr(dot, rel.size() - 4 - dot) ? k : 0;
+  return k <= kMaxStops && stops_suffix(k) == rel.substr(dot, rel.size() - 4 - dot) ? k : 0;
 }
 
 RgbaImage display_rgba8(const Picture& p, int stops) {
@@ -120,7 +128,7 @@ std::string shown_image(const fs::path& dir, const std::string& rel) {
     const std::string stem = fmt::format("{}.{:016x}", file.filename().string(),
                                          XXH3_64bits(bytes.data(), bytes.size()));
     // Named by these bytes: made from them (whatever its stops, which the bytes decide).
-    for (int k = 0; k <= 24; ++k) {
+    for (int k = 0; k <= kMaxStops; ++k) {
       const std::string made =
           (fs::path(rel).parent_path() / (stem + stops_suffix(k) + ".png")).string();
       if (inside(dir, made)) return made;

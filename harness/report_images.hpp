@@ -22,17 +22,18 @@ bool inside(const std::filesystem::path& dir, const std::string& rel);
 // with no other tone mapping; one channel as grey.
 RgbaImage display_rgba8(const Picture& p, int stops = 0);
 
-// How many stops a linear float picture's preview is darkened by so that its brightest finite
-// sample is not clipped: the least k >= 0 (at most 24) with max <= 2^k. 0 for 8-bit and
-// sRGB-encoded (16-bit) pictures. The page's exposure control brings the light back.
+// How many stops a linear float picture's preview is darkened by so that its highlights are not
+// clipped: the least k >= 0 (at most 24) with the 99.9th percentile of its finite samples
+// <= 2^k (a few fireflies still clip). 0 for 8-bit and sRGB-encoded (16-bit) pictures. The
+// page's exposure control brings the light back.
 int preview_stops(const Picture& p);
 
-// The stops a preview named by shown_image() is darkened by: k for `….s<k>.png`, else 0.
+// The stops a preview named by shown_image() is darkened by: k for `….s<k>.png`.
 int stops_of_preview(const std::string& rel);
 
 // What the page shows for the image `rel` (relative to `dir`): `rel` itself when a browser
-// shows its format, else its PNG preview beside it, `<file name>.<hash>.png` (`.<hash>.s<k>.png`
-// when darkened by k stops, preview_stops()), named by the
+// shows its format, else its PNG preview beside it, `<file name>.<hash>.s<k>.png` (darkened by
+// k stops, preview_stops()), named by the
 // hash of the image's bytes: an image that changes (a later run, a bless, a copied report)
 // gets a preview of its own, and the old one is removed. Empty when `rel` is no plain file
 // inside `dir` or cannot be read.

@@ -650,8 +650,8 @@ RunResults bless(const Suite& suite, const BlessOptions& b) {
     if (b.failed) {
       for (const Case* c : select(suite, b.run.selection)) {
         const auto it = reported.find(c->id);
-        if (it != reported.end() &&
-            (it->second.status == Status::kFail || it->second.status == Status::kNew)) {
+        const Status st = it == reported.end() ? Status::kPass : it->second.status;
+        if (st == Status::kFail || st == Status::kNew || st == Status::kWarn) {
           cases.push_back(c);
         }
       }

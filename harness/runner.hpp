@@ -50,7 +50,7 @@ struct BlessOptions {
   std::string tag;        // write an extra accepted variant <image>~<tag>.png
   bool force = false;     // rewrite the goldens of cases that pass too
   // Accept the images of the last report in run.report_dir (what was reviewed) instead of
-  // rendering; `failed`: every case that report says FAIL or NEW (and the selection keeps).
+  // rendering; `failed`: every case that report says FAIL, NEW or WARN (and the selection keeps).
   bool from_report = false, failed = false;
 };
 // Writes goldens for the selected cases from fresh (or unchanged) renders, or from the last

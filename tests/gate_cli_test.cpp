@@ -83,10 +83,11 @@ TEST_F(GateCli, AnImageBeyondAWarningLimitPassesWithAWarnStatus) {
   EXPECT_EQ(r.rc, 0) << r.out;
   EXPECT_EQ(results().at("cases").at(0).at("status"), "PASS");
 
-  // Accepting a warning makes the new image the golden, as for a failure.
+  // Accepting a warning makes the new image the golden, as for a failure, from the report's
+  // images with `--failed` too.
   suite(tolerance);
   ASSERT_EQ(aosuite("check s/w.toml").rc, 0);
-  r = aosuite("bless s/w.toml");
+  r = aosuite("bless s/w.toml --failed --report reports/w");
   ASSERT_EQ(r.rc, 0) << r.out << r.err;
   EXPECT_EQ(read_file(dir_ / "goldens" / "w" / "x" / "x.png"), read_file(dir_ / "s" / "x.png"));
   r = aosuite("check s/w.toml");

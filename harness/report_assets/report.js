@@ -25,7 +25,7 @@
   const CHUNK = 150;
   function rowHtml(i) {
     const c = data[i];
-    const thumb = c.thumb ? `<img class=thumb loading=lazy src="${esc(url(c.thumb))}" alt="">` : "";
+    const thumb = c.thumb ? `<img class=thumb loading=lazy src="${esc(url(c.thumb))}" alt=""${exposed(c.thumb_stops != null, c.thumb_stops)}>` : "";
     return `<tr data-i=${i} data-s=${c.status}><td><input type=checkbox aria-label=select${c.status === "ERROR" ? " disabled" : ""}${selected.has(i) ? " checked" : ""}></td>` +
       `<td><span class=${c.status}>${c.status}</span></td><td class=id><a href="#case=${esc(encodeURIComponent(c.id))}">${esc(c.id)}</a>` +
       (c.source ? `<div class=src>${esc(c.source)}</div>` : "") +
@@ -89,7 +89,7 @@
     const chosen = Array.from(selected).sort((a, b) => a - b);
     const ids = chosen.map((i) => data[i].id);
     const passing = chosen.some((i) => !failing(data[i].status));
-    $("selected").textContent = ids.length ? ids.length + " selected" : "none selected (all FAIL and NEW)";
+    $("selected").textContent = ids.length ? ids.length + " selected" : "none selected (all FAIL, NEW and WARN)";
     $("command").textContent = ids.length
       ? meta.approve + (passing ? " --force" : "") + " --filter " + shq(exact(ids))
       : meta.approve_failed;
