@@ -4,6 +4,7 @@
 
 #include <stdexcept>
 
+#include "ao/preset.hpp"
 #include "renderer/params.hpp"
 
 namespace aosuite::ao {
@@ -12,12 +13,15 @@ namespace {
 
 namespace rd = aosuite::renderer;
 
-// The technique's defaults, then --samples, --radius and each --param KEY=VALUE in order.
-// Throws std::invalid_argument for a malformed pair or a bad value.
-rd::AoParams technique_params(rd::Technique t, const std::optional<std::string>& samples,
+// The technique's defaults, then the preset, --samples, --radius and each --param KEY=VALUE
+// in order. Throws std::invalid_argument for a malformed pair or a bad value, FileError for a
+// bad preset file.
+rd::AoParams technique_params(rd::Technique t, const std::string& preset,
+                              const std::optional<std::string>& samples,
                               const std::optional<std::string>& radius,
                               const std::vector<std::string>& params) {
   rd::AoParams p = rd::default_params(t);
+  if (!preset.empty()) apply_preset(read_preset(preset), t, p);
   if (samples) rd::set_param(p, "samples", *samples);
   if (radius) rd::set_param(p, "radius", *radius);
   for (const std::string& kv : params) {
@@ -36,7 +40,7 @@ rd::RenderSettings case_settings(const CaseOptions& o) {
   rd::RenderSettings s;
   s.width = o.width, s.height = o.height;
   s.technique = rd::parse_technique(o.technique);
-  s.params = technique_params(s.technique, o.samples, o.radius, o.params);
+  s.params = technique_params(s.technique, o.preset, o.samples, o.radius, o.params);
   return s;
 }
 

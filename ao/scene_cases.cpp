@@ -3,9 +3,11 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <optional>
 #include <span>
 
 #include "ao/ao_effect_report.hpp"
+#include "ao/preset.hpp"
 #include "ao/scene_maker.hpp"
 #include "renderer/scene/scene_file.hpp"
 
@@ -68,7 +70,7 @@ struct SceneCaseKind final : harness::CaseKind {
   std::string_view name() const override { return "render"; }
   std::string_view key() const override { return "scene"; }
   std::vector<std::string_view> case_keys() const override {
-    return {"views", "techniques", "images", "allow_empty"};
+    return {"views", "techniques", "images", "allow_empty", "preset"};
   }
   std::vector<std::string_view> default_keys() const override { return {"techniques", "images"}; }
 
@@ -80,6 +82,17 @@ struct SceneCaseKind final : harness::CaseKind {
     const std::vector<std::string> techniques = read_techniques(t);
     const std::vector<std::string> images = read_images(t);
     const toml::node* allow_empty = t.table.get("allow_empty");
+    // A preset file (ao/preset.hpp), relative to the suite: over the technique's defaults,
+    // under the case's params.
+    const toml::node* preset_node = t.table.get("preset");
+    std::optional<Preset> preset;
+    if (preset_node) {
+      try {
+        preset = read_preset(t.dir / r.string(*preset_node, "preset"));
+      } catch (const std::runtime_error& e) {
+        r.fail(preset_node->source(), e.what());
+      }
+    }
     std::vector<std::string> views;
     if (const toml::node* n = t.table.get("views")) {
       views = r.strings(*n, "views");
@@ -106,6 +119,13 @@ struct SceneCaseKind final : harness::CaseKind {
         made->technique = rd::parse_technique(technique);
         made->params = rd::default_params(made->technique);
         made->allow_empty = allow_empty && r.boolean(*allow_empty, "allow_empty");
+        if (preset) {
+          try {
+            apply_preset(*preset, made->technique, made->params);
+          } catch (const std::invalid_argument& e) {
+            r.fail(preset_node->source(), e.what());
+          }
+        }
         for (const auto& [key, value] : t.base.param_overrides) {
           try {
             rd::set_param(made->params, key, value);
