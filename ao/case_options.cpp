@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <stdexcept>
+#include <variant>
 
 #include "ao/preset.hpp"
 #include "renderer/params.hpp"
@@ -42,6 +43,15 @@ rd::RenderSettings case_settings(const CaseOptions& o) {
   s.technique = rd::parse_technique(o.technique);
   s.params = technique_params(s.technique, o.preset, o.samples, o.radius, o.params);
   return s;
+}
+
+nlohmann::ordered_json params_json(rd::Technique technique, const rd::AoParams& p) {
+  nlohmann::ordered_json j = nlohmann::ordered_json::object();
+  for (const rd::ParamSpec& spec : rd::param_specs()) {
+    if (!rd::applies(spec, technique)) continue;
+    std::visit([&](const auto& v) { j[std::string(spec.key)] = v; }, rd::param_value(spec, p));
+  }
+  return j;
 }
 
 }  // namespace aosuite::ao

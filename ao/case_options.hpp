@@ -2,6 +2,7 @@
 // and the render settings that names. (The options themselves are the CLI's.)
 #pragma once
 
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
@@ -22,5 +23,9 @@ struct CaseOptions {
 // The render settings they name (all outputs, as RenderSettings defaults); throws
 // std::invalid_argument for an unknown technique or a bad parameter.
 renderer::RenderSettings case_settings(const CaseOptions& o);
+
+// The parameters `technique` reads, with their types (parameter table order): what `render`
+// and `error` report they used, and what a preset holds.
+nlohmann::ordered_json params_json(renderer::Technique technique, const renderer::AoParams& p);
 
 }  // namespace aosuite::ao

@@ -43,6 +43,7 @@ nlohmann::ordered_json error_study_json(const ErrorStudy& e, const CaseOptions& 
   j["width"] = s.width, j["height"] = s.height;
   j["samples"] = s.params.samples, j["radius"] = s.params.radius;
   j["intensity"] = s.params.intensity;
+  j["params"] = params_json(s.technique, s.params);
   j["reference"] = {{"variant", variant},
                     {"rays", rs.rays},
                     {"radius", rs.radius},

@@ -35,13 +35,4 @@ void write_exr(const fs::path& path, const cv::Mat& image) {
   aosuite::write_exr(path, image.cols, image.rows, image.ptr<float>());
 }
 
-nlohmann::ordered_json params_json(rd::Technique technique, const rd::AoParams& p) {
-  nlohmann::ordered_json j = nlohmann::ordered_json::object();
-  for (const rd::ParamSpec& spec : rd::param_specs()) {
-    if (!rd::applies(spec, technique)) continue;
-    std::visit([&](const auto& v) { j[std::string(spec.key)] = v; }, rd::param_value(spec, p));
-  }
-  return j;
-}
-
 }  // namespace aosuite::cli

@@ -1,5 +1,4 @@
-// What several OpenGL commands share: the options naming a case, float EXR output, and a
-// technique's parameters as JSON.
+// What several OpenGL commands share: the options naming a case, and float EXR output.
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -19,8 +18,5 @@ void add_case_options(CLI::App* cmd, ao::CaseOptions& o);
 
 // A CV_32F single-channel image as float EXR, written atomically; throws FileError.
 void write_exr(const std::filesystem::path& path, const cv::Mat& image);
-
-// The parameters `technique` reads, with their types (parameter table order).
-nlohmann::ordered_json params_json(renderer::Technique technique, const renderer::AoParams& p);
 
 }  // namespace aosuite::cli

@@ -53,7 +53,7 @@ int run_render(const RenderArgs& a) {
   nlohmann::ordered_json j;
   j["scene"] = scene.name, j["view"] = view.name, j["technique"] = a.c.technique;
   j["width"] = s.width, j["height"] = s.height;
-  j["params"] = params_json(s.technique, s.params);
+  j["params"] = ao::params_json(s.technique, s.params);
   j["gl"] = renderer.gl_description();
   j["gl_device"] = renderer.gl_source();
   j["runs"] = a.runs;

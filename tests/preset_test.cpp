@@ -1,7 +1,7 @@
-// Presets (ao/preset.hpp) where parameters are accepted: `render --preset` and a suite's scene
-// case `preset = "..."`, applied over the technique's defaults and under what is given beside
-// them; a preset for another technique or with a bad parameter is a one-line error naming the
-// file, and nothing is written.
+// Presets (ao/preset.hpp) where parameters are accepted: `render --preset`, `error --preset`
+// and a suite's scene case `preset = "..."`, applied over the technique's defaults and under what
+// is given beside them; a preset for another technique or with a bad parameter is a one-line error
+// naming the file, and nothing is written.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -41,6 +41,13 @@ TEST_F(Presets, RenderAppliesAPresetUnderItsParams) {
   EXPECT_EQ(params.at("slices"), 6);                                  // --param wins
   EXPECT_NEAR(params.at("falloff_range").get<double>(), 0.75, 1e-6);  // from the preset
   EXPECT_EQ(params.at("steps"), 3);                                   // the default
+
+  // `error` takes it too, and says which parameters it used.
+  r = aosuite(
+      "error --scene corner --technique gtao --width 16 --height 9 --preset g.toml "
+      "--json --out e");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(r.out).at("params").at("slices"), 5) << r.out;
 
   r = aosuite("render --scene corner --technique sao --preset g.toml --out wrong");
   EXPECT_EQ(r.rc, 2);
