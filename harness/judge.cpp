@@ -55,6 +55,10 @@ int severity(Status s) {
 
 Status worst(Status a, Status b) { return severity(a) >= severity(b) ? a : b; }
 
+bool awaits_approval(Status s) {
+  return s == Status::kFail || s == Status::kNew || s == Status::kWarn;
+}
+
 Status parse_status(std::string_view name) {
   for (Status s : {Status::kPass, Status::kFail, Status::kNew, Status::kError, Status::kFlaky,
                    Status::kWarn}) {

@@ -19,6 +19,9 @@ std::string_view status_name(Status s);  // PASS FAIL NEW ERROR FLAKY WARN
 // is as severe as its worst image, and the report lists the most severe first.
 int severity(Status s);
 Status worst(Status a, Status b);  // the more severe; `a` on a tie
+// Whether a person may accept the case's images as its goldens: FAIL, NEW and WARN (bless
+// --failed takes these, and they get a printed bless command).
+bool awaits_approval(Status s);
 Status parse_status(std::string_view name);
 
 // Where the render differs most from its golden (idiff's "max error @ (x, y)"): the largest

@@ -80,8 +80,9 @@ int preview_stops(const Picture& p) {
   if (finite.empty()) return 0;
   const auto at = finite.begin() + std::ptrdiff_t(finite.size() * 999 / 1000);
   std::nth_element(finite.begin(), at, finite.end());
+  const float highlight = *at;
   int k = 0;
-  while (k<kMaxStops&& * at> std::ldexp(1.0f, k)) ++k;
+  while (k < kMaxStops && highlight > std::ldexp(1.0f, k)) ++k;
   return k;
 }
 

@@ -562,8 +562,7 @@ RunResults check(const Suite& suite, const RunOptions& o) {
                 fmt::format("failed, then passed on attempt {}: {}", k + 1, first_try.message);
           }
         }
-        // A warning is accepted as a failure is: its new images become the goldens.
-        if (r.status == Status::kFail || r.status == Status::kNew || r.status == Status::kWarn) {
+        if (awaits_approval(r.status)) {
           r.bless_command = bless_command(bless_prefix(suite), {c.id});
         }
       });
@@ -650,8 +649,7 @@ RunResults bless(const Suite& suite, const BlessOptions& b) {
     if (b.failed) {
       for (const Case* c : select(suite, b.run.selection)) {
         const auto it = reported.find(c->id);
-        const Status st = it == reported.end() ? Status::kPass : it->second.status;
-        if (st == Status::kFail || st == Status::kNew || st == Status::kWarn) {
+        if (it != reported.end() && awaits_approval(it->second.status)) {
           cases.push_back(c);
         }
       }
