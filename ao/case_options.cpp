@@ -22,7 +22,7 @@ rd::AoParams technique_params(rd::Technique t, const std::string& preset,
                               const std::optional<std::string>& radius,
                               const std::vector<std::string>& params) {
   rd::AoParams p = rd::default_params(t);
-  if (!preset.empty()) apply_preset(read_preset(preset), t, p);
+  if (!preset.empty()) apply_preset(find_preset(preset, t), t, p);
   if (samples) rd::set_param(p, "samples", *samples);
   if (radius) rd::set_param(p, "radius", *radius);
   for (const std::string& kv : params) {

@@ -17,7 +17,7 @@ struct CaseOptions {
   int width = 1920, height = 1080;
   std::optional<std::string> samples, radius;
   std::vector<std::string> params;  // KEY=VALUE
-  std::string preset;               // a preset file (ao/preset.hpp), applied before the above
+  std::string preset;  // a preset file or built-in name (ao/preset.hpp), applied before the above
 };
 
 // The render settings they name (all outputs, as RenderSettings defaults); throws

@@ -1,8 +1,12 @@
 #include "ao/preset.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <toml++/toml.h>
 
+#include <algorithm>
+#include <charconv>
+#include <map>
 #include <stdexcept>
 
 #include "common/file_io.hpp"
@@ -12,12 +16,15 @@ namespace aosuite::ao {
 
 namespace rd = aosuite::renderer;
 
-Preset read_preset(const std::filesystem::path& file) {
-  const std::vector<unsigned char> bytes = read_file(file);
+const std::map<std::string_view, std::string_view>& embedded_presets();  // generated
+
+namespace {
+
+// `source` as a preset; `file` names it in errors.
+Preset parse_preset(std::string_view source, const std::filesystem::path& file) {
   toml::table root;
   try {
-    root = toml::parse(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()),
-                       file.string());
+    root = toml::parse(source, file.string());
   } catch (const toml::parse_error& e) {
     throw FileError(fmt::format("{}:{}:{}: {}", file.string(), e.source().begin.line,
                                 e.source().begin.column, e.description()));
@@ -49,6 +56,41 @@ Preset read_preset(const std::filesystem::path& file) {
   return p;
 }
 
+}  // namespace
+
+Preset read_preset(const std::filesystem::path& file) {
+  const std::vector<unsigned char> bytes = read_file(file);
+  return parse_preset(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()),
+                      file);
+}
+
+bool is_preset_file(std::string_view arg) {
+  return arg.find('/') != std::string_view::npos || arg.ends_with(".toml");
+}
+
+std::vector<std::string> builtin_preset_names() {
+  std::vector<std::string> names;
+  for (const auto& [file, text] : embedded_presets()) {
+    std::string name(file.substr(0, file.find('-')));
+    if (std::ranges::find(names, name) == names.end()) names.push_back(name);
+  }
+  return names;
+}
+
+Preset find_preset(const std::string& arg, rd::Technique technique,
+                   const std::filesystem::path& dir) {
+  if (is_preset_file(arg)) return read_preset(dir / arg);
+  const std::string file = fmt::format("{}-{}.toml", arg, rd::technique_name(technique));
+  const auto& embedded = embedded_presets();
+  const auto it = embedded.find(file);
+  if (it == embedded.end()) {
+    throw std::invalid_argument(
+        fmt::format("no built-in preset '{}' for {} (built in: {}; a preset file ends in .toml)",
+                    arg, rd::technique_name(technique), fmt::join(builtin_preset_names(), ", ")));
+  }
+  return parse_preset(it->second, "built-in preset " + file);
+}
+
 void apply_preset(const Preset& preset, rd::Technique technique, rd::AoParams& params) {
   if (preset.technique != technique) {
     throw std::invalid_argument(fmt::format("{}: a preset for {}, not {}", preset.file.string(),
@@ -56,6 +98,32 @@ void apply_preset(const Preset& preset, rd::Technique technique, rd::AoParams& p
                                             rd::technique_name(technique)));
   }
   for (const auto& [key, value] : preset.params) rd::set_param(params, key, value);
+}
+
+namespace {
+
+// A value as set_param reads it, as TOML: "1,0.5" -> [1, 0.5]; "bilateral" -> "bilateral".
+std::string toml_value(const std::string& text) {
+  if (text.find(',') != std::string::npos) {
+    std::string out = "[";
+    for (char c : text) out += c == ',' ? std::string(", ") : std::string(1, c);
+    return out + "]";
+  }
+  double number = 0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), number);
+  if (ec == std::errc() && end == text.data() + text.size()) return text;
+  return "\"" + text + "\"";  // a word set_param took (a blur's name): nothing to escape
+}
+
+}  // namespace
+
+void write_preset(const Preset& preset, const std::vector<std::string>& comment) {
+  std::string out;
+  for (const std::string& line : comment) out += "# " + line + "\n";
+  out += fmt::format("technique = \"{}\"\n\n[params]\n", rd::technique_name(preset.technique));
+  for (const auto& [key, value] : preset.params) out += key + " = " + toml_value(value) + "\n";
+  if (preset.file.has_parent_path()) std::filesystem::create_directories(preset.file.parent_path());
+  write_text(preset.file, out);
 }
 
 }  // namespace aosuite::ao

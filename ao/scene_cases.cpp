@@ -82,17 +82,10 @@ struct SceneCaseKind final : harness::CaseKind {
     const std::vector<std::string> techniques = read_techniques(t);
     const std::vector<std::string> images = read_images(t);
     const toml::node* allow_empty = t.table.get("allow_empty");
-    // A preset file (ao/preset.hpp), relative to the suite: over the technique's defaults,
-    // under the case's params.
+    // A preset file relative to the suite, or a built-in preset's name (ao/preset.hpp): over
+    // the technique's defaults, under the case's params.
     const toml::node* preset_node = t.table.get("preset");
-    std::optional<Preset> preset;
-    if (preset_node) {
-      try {
-        preset = read_preset(t.dir / r.string(*preset_node, "preset"));
-      } catch (const std::runtime_error& e) {
-        r.fail(preset_node->source(), e.what());
-      }
-    }
+    const std::string preset = preset_node ? r.string(*preset_node, "preset") : std::string();
     std::vector<std::string> views;
     if (const toml::node* n = t.table.get("views")) {
       views = r.strings(*n, "views");
@@ -119,10 +112,11 @@ struct SceneCaseKind final : harness::CaseKind {
         made->technique = rd::parse_technique(technique);
         made->params = rd::default_params(made->technique);
         made->allow_empty = allow_empty && r.boolean(*allow_empty, "allow_empty");
-        if (preset) {
+        if (preset_node) {
           try {
-            apply_preset(*preset, made->technique, made->params);
-          } catch (const std::invalid_argument& e) {
+            apply_preset(find_preset(preset, made->technique, t.dir), made->technique,
+                         made->params);
+          } catch (const std::exception& e) {
             r.fail(preset_node->source(), e.what());
           }
         }

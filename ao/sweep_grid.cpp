@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <toml++/toml.h>
 
+#include "ao/preset.hpp"
 #include "common/toml_reader.hpp"
 #include "image/image_io.hpp"
 #include "renderer/params.hpp"
@@ -65,7 +66,25 @@ std::map<std::string, std::string> fixed_params(const toml::node_view<const toml
   return out;
 }
 
-SweepGrid parse(const toml::table& t, const fs::path& path) {
+// A preset file (relative to the grid) or built-in name: its values under the table's params,
+// and its sample count and intensity where the grid gives no such axis (its radius never: the
+// radius is the study's axis).
+void add_preset(TechniqueGrid& tg, const std::string& name, const fs::path& path) {
+  const Preset preset = find_preset(name, tg.technique, path.parent_path());
+  renderer::AoParams probe = renderer::default_params(tg.technique);
+  apply_preset(preset, tg.technique, probe);  // throws for another technique's preset
+  for (const auto& [k, v] : preset.params) {
+    if (k == "samples") {
+      if (tg.samples.empty()) tg.samples = {probe.samples};
+    } else if (k == "intensity") {
+      if (tg.intensities.empty()) tg.intensities = {probe.intensity};
+    } else if (k != "radius") {
+      tg.params.emplace(k, v);  // the table's own params win
+    }
+  }
+}
+
+SweepGrid parse(const toml::table& t, const fs::path& path, const std::string& preset) {
   SweepGrid g;
   g.name = t["name"].value_or(path.stem().string());
   for (std::string s : strings(t["scenes"], "scenes")) {
@@ -101,14 +120,25 @@ SweepGrid parse(const toml::table& t, const fs::path& path) {
       throw std::invalid_argument(fmt::format(
           "{}.samples: {} takes no sample count (set its own keys in params)", where, name.str()));
     }
-    TechniqueGrid tg{
-        technique,
-        takes_samples ? numbers<int>(tv["samples"], where + ".samples") : std::vector<int>{0},
-        numbers<float>(tv["radius"], where + ".radius"),
-        {},
-        {}};
+    TechniqueGrid tg{technique,
+                     // A preset may give the sample count (add_preset).
+                     !takes_samples ? std::vector<int>{0}
+                     : (tv["preset"] || !preset.empty()) && !tv["samples"]
+                         ? std::vector<int>{}
+                         : numbers<int>(tv["samples"], where + ".samples"),
+                     numbers<float>(tv["radius"], where + ".radius"),
+                     {},
+                     {}};
     if (tv["intensity"]) tg.intensities = numbers<float>(tv["intensity"], where + ".intensity");
     if (tv["params"]) tg.params = fixed_params(tv["params"], tg.technique, path, where + ".params");
+    if (tv["preset"]) {
+      const std::optional<std::string> own = tv["preset"].value<std::string>();
+      if (!own) throw std::invalid_argument(where + ".preset must be a string");
+      add_preset(tg, *own, path);
+    } else if (!preset.empty()) {
+      add_preset(tg, preset, path);
+    }
+    if (tg.samples.empty()) tg.samples = {renderer::default_params(technique).samples};
     g.techniques.push_back(std::move(tg));
   }
   return g;
@@ -116,12 +146,12 @@ SweepGrid parse(const toml::table& t, const fs::path& path) {
 
 }  // namespace
 
-SweepGrid read_sweep_grid(const fs::path& path) {
+SweepGrid read_sweep_grid(const fs::path& path, const std::string& preset) {
   const std::vector<unsigned char> bytes = read_file(path);
   try {
     const toml::table t = toml::parse(
         std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), path.string());
-    return parse(t, path);
+    return parse(t, path, preset);
   } catch (const toml::parse_error& e) {
     throw FileError(fmt::format("{}:{}:{}: {}", path.string(), e.source().begin.line,
                                 e.source().begin.column, e.description()));

@@ -1,6 +1,7 @@
 // The grid `aosuite sweep` runs: scenes (and views), resolutions, and per technique the
-// samples x radius (x intensity) values and any fixed parameters, read from a TOML file
-// (suites/sweep_*.toml).
+// samples x radius (x intensity) values and any fixed parameters, or a preset (`preset =
+// "tuned"` or a file: its values under the table's params, its samples and intensity where the
+// table gives no such axis), read from a TOML file (suites/sweep_*.toml).
 #pragma once
 
 #include <filesystem>
@@ -34,6 +35,7 @@ struct SweepGrid {
 };
 
 // Throws aosuite::FileError naming the file, and the key at fault, for unreadable or bad input.
-SweepGrid read_sweep_grid(const std::filesystem::path& path);
+// `preset`: for every technique table without its own (`sweep --preset`).
+SweepGrid read_sweep_grid(const std::filesystem::path& path, const std::string& preset = {});
 
 }  // namespace aosuite::ao

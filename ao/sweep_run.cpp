@@ -2,7 +2,7 @@
 
 #include <optional>
 
-#include "ao/statistics.hpp"
+#include "ao/timed_render.hpp"
 #include "reference/frame_error.hpp"
 #include "reference/reference_cache.hpp"
 #include "renderer/params.hpp"
@@ -14,30 +14,6 @@ namespace {
 
 namespace rd = aosuite::renderer;
 namespace ref = aosuite::reference;
-
-struct Timed {
-  rd::Images images;
-  double gl_ms;
-};
-
-// One warm-up frame (llvmpipe compiles shader variants on first use), then the median over
-// `runs` frames of the AO work: every pass except the G-buffer and the blend.
-Timed render_timed(rd::Renderer& renderer, const rd::Scene& scene, const rd::View& view,
-                   const rd::RenderSettings& s, int runs) {
-  renderer.render(scene, view, s);
-  std::vector<double> gl;
-  Timed t{{}, 0};
-  for (int r = 0; r < runs; ++r) {
-    t.images = renderer.render(scene, view, s);
-    double g = 0;
-    for (const rd::PassTime& p : t.images.times) {
-      if (p.pass != "gbuffer" && p.pass != "blend") g += p.gpu_ms;
-    }
-    gl.push_back(g);
-  }
-  t.gl_ms = median(gl);
-  return t;
-}
 
 std::vector<const rd::View*> pick_views(const rd::Scene& scene,
                                         const std::vector<std::string>& names) {

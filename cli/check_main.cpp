@@ -17,15 +17,13 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// Opens libaosuite_gl.so beside this library and lets it register its kinds. This library is
-// first made global, so that the one it opens binds to this harness (one registry of kinds),
-// not to the copy it carries for its own commands.
+// Opens libaosuite_gl.so beside this library and lets it register its kinds. It links this
+// library (cli/CMakeLists.txt) rather than a copy of the harness, so it registers into this
+// registry of kinds.
 void load_ao_bench() {
   Dl_info self{};
-  if (!dladdr(reinterpret_cast<const void*>(&load_ao_bench), &self) || !self.dli_fname ||
-      !dlopen(self.dli_fname, RTLD_NOW | RTLD_NOLOAD | RTLD_GLOBAL)) {
+  if (!dladdr(reinterpret_cast<const void*>(&load_ao_bench), &self) || !self.dli_fname)
     throw std::runtime_error("cannot find libaosuite_check.so's own path");
-  }
   const fs::path gl = fs::path(self.dli_fname).parent_path() / "libaosuite_gl.so";
   if (!fs::exists(gl)) {
     throw std::runtime_error(

@@ -41,5 +41,6 @@ void add_pmi_study_command(CLI::App& app, int& rc);   // in libaosuite_gl.so
 void add_error_command(CLI::App& app, int& rc);       // in libaosuite_gl.so
 void add_sweep_command(CLI::App& app, int& rc);       // in libaosuite_gl.so
 void add_gl_info_command(CLI::App& app, int& rc);     // in libaosuite_gl.so
+void add_tune_command(CLI::App& app, int& rc);        // in libaosuite_gl.so
 
 }  // namespace aosuite::cli

@@ -25,8 +25,8 @@ void add_case_options(CLI::App* cmd, ao::CaseOptions& o) {
   std::string keys;
   for (const rd::ParamSpec& p : rd::param_specs()) keys += fmt::format("\n  {}: {}", p.key, p.doc);
   cmd->add_option("--preset", o.preset,
-                  "a preset file of the technique's parameters (technique = \"...\", [params]), "
-                  "applied before --samples, --radius and --param");
+                  "the technique's parameters from a preset file (technique = \"...\", [params]) "
+                  "or a built-in preset (tuned), applied before --samples, --radius and --param");
   cmd->add_option("--param", o.params, "KEY=VALUE, repeatable; keys:" + keys);
 }
 

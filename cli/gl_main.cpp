@@ -38,6 +38,7 @@ extern "C" int aosuite_gl_main(int argc, char** argv) {
   aosuite::cli::add_error_command(app, rc);
   aosuite::cli::add_sweep_command(app, rc);
   aosuite::cli::add_gl_info_command(app, rc);
+  aosuite::cli::add_tune_command(app, rc);
   add_gl_options(app);
   return aosuite::cli::run_library_app(app, argc, argv, rc);
 }

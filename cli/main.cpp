@@ -46,6 +46,9 @@ constexpr std::array kLibraryCommands{
     LibraryCommand{"sweep",
                    "Time and error of each technique over a samples x radius x resolution grid",
                    kBench},
+    LibraryCommand{"tune",
+                   "Search a technique's parameters against the ray-traced reference (a preset)",
+                   kBench},
     LibraryCommand{"gl-info", "List the OpenGL backends and devices this machine can render with",
                    kBench},
 };

@@ -53,17 +53,20 @@ void write_sweep(const fs::path& dir, const ao::SweepResult& sweep, const std::s
   fmt::print("{} rows in {}: {}\n", sweep.rows.size(), dir.string(), files);
 }
 
-int run_sweep(const std::string& grid_file, const std::vector<std::string>& resolutions,
-              const std::vector<std::string>& scenes, const std::string& shard_text,
-              const std::string& out) {
-  ao::SweepGrid g = ao::read_sweep_grid(grid_file);
-  if (!scenes.empty()) g.scenes = scenes;
-  if (!resolutions.empty()) {
+struct SweepArgs {
+  std::string grid, out = "reports/sweep", shard, preset;
+  std::vector<std::string> resolutions, scenes, merge;
+};
+
+int run_sweep(const SweepArgs& a) {
+  ao::SweepGrid g = ao::read_sweep_grid(a.grid, a.preset);
+  if (!a.scenes.empty()) g.scenes = a.scenes;
+  if (!a.resolutions.empty()) {
     g.resolutions.clear();
-    for (const std::string& r : resolutions) g.resolutions.push_back(parse_size(r));
+    for (const std::string& r : a.resolutions) g.resolutions.push_back(parse_size(r));
   }
   harness::Selection shard;
-  if (!shard_text.empty()) harness::set_shard(shard, shard_text);
+  if (!a.shard.empty()) harness::set_shard(shard, a.shard);
   std::set<std::pair<std::string, std::string>> empty_views;  // warned once each
   const ao::SweepResult sweep = ao::run_sweep(g, shard, [&](const ao::Row& row) {
     if (row.geometry_pixels == 0 && empty_views.emplace(row.scene, row.view).second) {
@@ -78,19 +81,15 @@ int run_sweep(const std::string& grid_file, const std::vector<std::string>& reso
                g.unbounded ? fmt::format(" (unbounded {:.4f})", row.unbounded.rmse) : "");
     std::fflush(stdout);
   });
-  write_sweep(out, sweep,
-              shard_text.empty() ? "" : fmt::format("{}/{}", shard.shard_index, shard.shard_count));
+  write_sweep(a.out, sweep,
+              a.shard.empty() ? "" : fmt::format("{}/{}", shard.shard_index, shard.shard_count));
   return kExitSame;
 }
 
 }  // namespace
 
 void add_sweep_command(CLI::App& app, int& rc) {
-  struct Args {
-    std::string grid, out = "reports/sweep", shard;
-    std::vector<std::string> resolutions, scenes, merge;
-  };
-  auto a = std::make_shared<Args>();
+  auto a = std::make_shared<SweepArgs>();
   CLI::App* cmd = app.add_subcommand(
       "sweep", "Time and error of each technique over a samples x radius x resolution grid");
   cmd->add_option("grid", a->grid, "grid file (suites/sweep_ci.toml, suites/sweep_full.toml)");
@@ -99,6 +98,9 @@ void add_sweep_command(CLI::App& app, int& rc) {
                   "WxH, repeatable: replaces the grid's resolutions");
   cmd->add_option("--scene", a->scenes,
                   "scene name or file, repeatable: replaces the grid's scenes");
+  cmd->add_option("--preset", a->preset,
+                  "a preset file or built-in name (tuned) for every technique table without its "
+                  "own preset");
   cmd->add_option("--shard", a->shard,
                   "i/n: run every n-th configuration from the i-th (0-based; default: "
                   "GTEST_SHARD_INDEX / GTEST_TOTAL_SHARDS when set); merge with --merge");
@@ -107,13 +109,14 @@ void add_sweep_command(CLI::App& app, int& rc) {
                   "writes them (no grid, nothing rendered)");
   guarded(cmd, rc, "sweep", [a] {
     if (!a->merge.empty()) {
-      if (!a->grid.empty() || !a->shard.empty() || !a->resolutions.empty() || !a->scenes.empty())
+      if (!a->grid.empty() || !a->shard.empty() || !a->resolutions.empty() || !a->scenes.empty() ||
+          !a->preset.empty())
         throw std::invalid_argument("--merge takes only shard folders and --out");
       write_sweep(a->out, ao::merge_sweeps(a->merge), "");
       return kExitSame;
     }
     if (a->grid.empty()) throw std::invalid_argument("a grid file is required (or --merge)");
-    return run_sweep(a->grid, a->resolutions, a->scenes, a->shard, a->out);
+    return run_sweep(*a);
   });
 }
 

@@ -43,6 +43,13 @@ cv::Mat geometry_mask(const cv::Mat& depth, int border) {
   return mask;
 }
 
+double masked_rmse(const cv::Mat& estimate, const cv::Mat& reference, const cv::Mat& mask) {
+  const int n = cv::countNonZero(mask);
+  if (n == 0) return 0;
+  const double norm = cv::norm(estimate, reference, cv::NORM_L2, mask);
+  return norm / std::sqrt(static_cast<double>(n));
+}
+
 cv::Mat depth_edge_mask(const cv::Mat& depth, float relative_threshold) {
   cv::Mat mask(depth.size(), CV_8U, cv::Scalar(0));
   for (int y = 0; y < depth.rows; ++y) {

@@ -31,6 +31,9 @@ struct MetricOptions {
 
 // CV_8U masks (255 = in): geometry (depth > 0) away from the border; depth edges.
 cv::Mat geometry_mask(const cv::Mat& depth, int border);
+// ErrorStats::rmse alone, over `mask`'s pixels (0 when there are none): what `aosuite tune`
+// minimises, measured thousands of times, so without SSIM and the edge masks.
+double masked_rmse(const cv::Mat& estimate, const cv::Mat& reference, const cv::Mat& mask);
 cv::Mat depth_edge_mask(const cv::Mat& depth, float relative_threshold);
 
 // SSIM map (Wang et al. 2004) with an 11x11 Gaussian window of sigma 1.5 (edges replicated),

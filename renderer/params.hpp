@@ -18,6 +18,14 @@ namespace aosuite::renderer {
 // A parameter's value with its type, for JSON.
 using ParamValue = std::variant<int, float, std::string, std::vector<float>>;
 
+// Where `aosuite tune` searches a number (each weight of a list), `log`: evenly in its
+// logarithm. lo == hi: not searched (the radius is the study's, not the tuner's; cost caps).
+struct SearchRange {
+  double lo = 0, hi = 0;
+  bool log = false;
+  bool searched() const { return hi > lo; }
+};
+
 struct ParamSpec {
   std::string_view key;
   std::string_view doc;
@@ -30,6 +38,7 @@ struct ParamSpec {
   bool min_exclusive;  // e.g. radius > 0
   // A valid value unlike every technique's default: what tests set to see it change a hash.
   std::string_view sample;
+  SearchRange search;
 };
 
 std::span<const ParamSpec> param_specs();

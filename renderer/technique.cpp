@@ -1,5 +1,6 @@
 #include "renderer/technique.hpp"
 
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -15,6 +16,21 @@ std::unique_ptr<AoPass> make_bitmask_pass();  // bitmask_pass.cpp
 
 namespace {
 
+// Depth fetches per pixel (TechniqueInfo::depth_taps), read off each shader's loops.
+int tap_count(const AoParams& p) { return p.samples; }         // alchemy.frag, sao.frag
+int ue4_taps(const AoParams& p) { return p.samples * 2 * 3; }  // ue4.frag: 2 sides, kSteps 3
+int slice_taps(const AoParams& p) { return p.gtao.slices * p.gtao.steps * 2; }  // per side
+int no_taps(const AoParams&) { return 0; }
+// Each weighted level runs Alchemy's taps over a quarter of the pixels of the level above.
+int mssao_taps(const AoParams& p) {
+  double taps = 0, share = 1;
+  for (float w : p.mssao.level_weights) {
+    if (w != 0) taps += p.samples * share;
+    share /= 4;
+  }
+  return static_cast<int>(std::ceil(taps));
+}
+
 // The registry. Defaults are the thesis's (chapter 5) and the papers': Alchemy r=1 s=16;
 // SAO r=10 s=8; UE4 r=0.05 s=8; MSSAO r=2 s=16 with level weights 1.0/0.5/0.3/0.3/0.3; PMI
 // the paper's recommended 162 viewpoints at 1280x960.
@@ -26,7 +42,7 @@ constexpr TechniqueInfo kTechniques[] = {
        p.samples = 16, p.radius = 1, p.bias = 0.002f;  // beta: Unity URP's 0.002 per unit depth
        return p;
      },
-     make_alchemy_pass},
+     tap_count, make_alchemy_pass},
     {Technique::kSao, "sao", "Scalable AO (McGuire et al. 2012)", Space::kScreen, Sampling::kTaps,
      [] {
        AoParams p;
@@ -35,7 +51,7 @@ constexpr TechniqueInfo kTechniques[] = {
        p.samples = 8, p.radius = 10, p.bias = 0.012f;
        return p;
      },
-     make_sao_pass},
+     tap_count, make_sao_pass},
     {Technique::kMssao, "mssao", "Multi-Scale AO (Hoang & Low 2012)", Space::kScreen,
      Sampling::kTaps,
      [] {
@@ -43,7 +59,7 @@ constexpr TechniqueInfo kTechniques[] = {
        p.samples = 16, p.radius = 2, p.bias = 0.002f;
        return p;
      },
-     make_mssao_pass},
+     mssao_taps, make_mssao_pass},
     {Technique::kUe4, "ue4", "UE4 AO (Mittring 2012)", Space::kScreen, Sampling::kTaps,
      [] {
        AoParams p;
@@ -51,7 +67,7 @@ constexpr TechniqueInfo kTechniques[] = {
        p.samples = 8, p.radius = 0.05f, p.bias = 0.03f, p.intensity = 0.5f, p.contrast = 2;
        return p;
      },
-     make_ue4_pass},
+     ue4_taps, make_ue4_pass},
     {Technique::kGtao, "gtao", "Ground-Truth AO (Jimenez et al. 2016), XeGTAO's High preset",
      Space::kScreen, Sampling::kSlices,
      [] {
@@ -60,7 +76,7 @@ constexpr TechniqueInfo kTechniques[] = {
        p.radius = 0.5f, p.contrast = 2.2f;
        return p;
      },
-     make_gtao_pass},
+     slice_taps, make_gtao_pass},
     {Technique::kBitmask, "bitmask",
      "visibility-bitmask AO (Therrien et al. 2023): GTAO's slices with thickness", Space::kScreen,
      Sampling::kSlices,
@@ -71,9 +87,9 @@ constexpr TechniqueInfo kTechniques[] = {
        p.radius = 0.5f;
        return p;
      },
-     make_bitmask_pass},
+     slice_taps, make_bitmask_pass},
     {Technique::kPmi, "pmi", "viewpoint-based AO, polygonal mutual information (Gonzalez 2008)",
-     Space::kObject, Sampling::kNone, [] { return AoParams{}; }, nullptr},
+     Space::kObject, Sampling::kNone, [] { return AoParams{}; }, no_taps, nullptr},
 };
 
 }  // namespace

@@ -57,7 +57,10 @@ struct BitmaskParams {
 
 struct AoParams {
   int samples = 16;
-  float radius = 1;     // scene units
+  float radius = 1;  // scene units
+  // The kernel reaches radius * radius_scale while the study (and its reference) keeps
+  // `radius`: XeGTAO's tuned radius multiplier, for every technique (what `aosuite tune` finds).
+  float radius_scale = 1;
   float bias = 0;       // technique-specific units, see each shader's header
   float intensity = 1;  // sigma
   float contrast = 1;   // k (Alchemy, SAO), power (UE4), final power (GTAO)
@@ -82,6 +85,9 @@ struct TechniqueInfo {
   Space space;               // screen space: an AoPass over the G-buffer
   Sampling sampling;
   AoParams (*defaults)();  // the published parameters
+  // Depth fetches per pixel of the AO pass at these parameters: the cost `aosuite tune`'s
+  // budget holds (GTAO's High preset: 3 slices x 3 steps x 2 sides = 18). 0 for object space.
+  int (*depth_taps)(const AoParams&);
   // The screen-space pass; null for object-space techniques, which the Renderer runs itself.
   std::unique_ptr<AoPass> (*make_pass)();
 };

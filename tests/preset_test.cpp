@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "png_fixture.hpp"
 #include "process.hpp"
@@ -23,8 +24,8 @@ class Presets : public ::testing::Test {
     std::ofstream(dir_ / "g.toml") << "technique = \"gtao\"\n[params]\nslices = 5\n"
                                       "falloff_range = 0.75\n";
   }
-  test::Outcome aosuite(const std::string& args) {
-    return test::run_shell("cd " + dir_.path().string() + " && " + AOSUITE_BIN + " " + args,
+  test::Outcome aosuite(const std::string& args, const std::string& env = "") {
+    return test::run_shell("cd " + dir_.path().string() + " && " + env + AOSUITE_BIN + " " + args,
                            dir_.path());
   }
   test::TempDir dir_;
@@ -82,6 +83,88 @@ TEST_F(Presets, ASuitesSceneCaseNamesAPreset) {
   EXPECT_EQ(r.rc, 2);
   EXPECT_NE(r.err.find("p.toml:7:10: "), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("a preset for gtao, not sao"), std::string::npos) << r.err;
+}
+
+// `tune` writes a preset with the command that made it, `render` takes it, and a technique
+// with nothing to search is a one-line error that writes nothing.
+TEST_F(Presets, TuneWritesAPresetThatRenderTakes) {
+  const std::string env = "AOSUITE_REFERENCE_CACHE=" + (dir_ / "refs").string() + " ";
+  test::Outcome r = aosuite(
+      "tune --technique sao --scenes corner,spheres --radius 1 --width 48 --height 27 --rays 16 "
+      "--trials 6 --out t/sao.toml --json t/r.json",
+      env);
+  ASSERT_EQ(r.rc, 0) << r.err;
+  EXPECT_EQ(read_text(dir_ / "t" / "sao.toml").rfind("# Made by `aosuite tune --technique sao", 0),
+            0u);
+  const nlohmann::json j = nlohmann::json::parse(read_text(dir_ / "t" / "r.json"));
+  EXPECT_EQ(j.at("folds").size(), 2u);
+  EXPECT_LE(j.at("error").at("tuned").get<double>(), j.at("error").at("default").get<double>());
+  EXPECT_NE(r.out.find("AO RMSE on the scene left out"), std::string::npos) << r.out;
+
+  r = aosuite(
+      "render --scene corner --technique sao --preset t/sao.toml --width 16 --height 9 "
+      "--outputs with_ao --out o");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  const nlohmann::json params =
+      nlohmann::json::parse(read_text(dir_ / "o" / "corner_inside_sao.json")).at("params");
+  // Every "key=value" of the preset's identity is what render used.
+  std::istringstream preset(j.at("preset").get<std::string>());
+  for (std::string kv; preset >> kv;) {
+    const std::string key = kv.substr(0, kv.find('=')), value = kv.substr(kv.find('=') + 1);
+    EXPECT_NEAR(params.at(key).get<double>(), std::stod(value), 1e-6) << kv;
+  }
+
+  r = aosuite("tune --technique pmi --scenes corner --out t/pmi.toml", env);
+  EXPECT_EQ(r.rc, 2);
+  EXPECT_NE(r.err.find("pmi has no parameter the tuner searches"), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "t" / "pmi.toml"));
+}
+
+// The radius_scale line of ao/presets/tuned-TECHNIQUE.toml, as the file says it.
+double tuned_radius_scale(const std::string& technique) {
+  const std::string file =
+      read_text(fs::path(AOSUITE_SOURCE_DIR) / "ao" / "presets" / ("tuned-" + technique + ".toml"));
+  const std::size_t at = file.find("\nradius_scale = ");
+  if (at == std::string::npos) throw std::runtime_error("tuned-" + technique + ": no radius_scale");
+  return std::stod(file.substr(at + 16));
+}
+
+// A built-in preset is named where a file is: `--preset tuned` is ao/presets/tuned-T.toml for
+// every screen-space technique, in render and in a suite; an unknown name lists the built-ins.
+TEST_F(Presets, TheBuiltInTunedPresetIsNamedLikeAFile) {
+  for (const char* technique : {"alchemy", "sao", "mssao", "ue4", "gtao", "bitmask"}) {
+    const test::Outcome r =
+        aosuite(std::string("render --scene corner --technique ") + technique +
+                " --preset tuned --radius 0.5 --width 16 --height 9 --outputs with_ao --out o");
+    ASSERT_EQ(r.rc, 0) << technique << r.err;
+    const nlohmann::json params = nlohmann::json::parse(
+        read_text(dir_ / "o" / ("corner_inside_" + std::string(technique) + ".json")))["params"];
+    EXPECT_EQ(params.at("radius"), 0.5);  // --radius, under the preset
+    EXPECT_NEAR(params.at("radius_scale").get<double>(), tuned_radius_scale(technique), 1e-6);
+  }
+  test::Outcome r = aosuite("render --technique gtao --preset nosuch --out wrong");
+  EXPECT_EQ(r.rc, 2);
+  EXPECT_NE(r.err.find("no built-in preset 'nosuch' for gtao (built in: tuned"), std::string::npos)
+      << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "wrong"));
+
+  std::ofstream(dir_ / "s.toml") << "[[case]]\nscene = \"corner\"\nviews = [\"inside\"]\n"
+                                    "techniques = [\"gtao\", \"sao\"]\nwidth = 16\nheight = 9\n"
+                                    "preset = \"tuned\"\n";
+  r = aosuite("check s.toml");
+  ASSERT_EQ(r.rc, 1) << r.out << r.err;  // NEW
+  const nlohmann::json cases =
+      nlohmann::json::parse(read_text(dir_ / "reports" / "s" / "results.json")).at("cases");
+  ASSERT_EQ(cases.size(), 2u);
+  for (const nlohmann::json& c : cases) {
+    std::string technique;
+    for (const nlohmann::json& l : c.at("labels"))
+      if (l.at(0) == "technique") technique = l.at(1);
+    EXPECT_NEAR(c.at("params").at("radius_scale").get<double>(), tuned_radius_scale(technique),
+                1e-6)
+        << c;
+  }
 }
 
 }  // namespace

@@ -16,12 +16,10 @@ cmake --build "$build" -j "$(nproc)" >"$build/sanitize-build.log" 2>&1 ||
 echo "sanitize: built in $((SECONDS - start)) s"
 
 # abort_on_error: a report kills the process (a test that spawns aosuite sees it fail too).
-# detect_odr_violation=0: libaosuite_check.so and libaosuite_gl.so each carry a copy of the same
-# static harness/compare libraries, and a suite with scene cases loads the second into the
-# first's process (made RTLD_GLOBAL, so every reference binds to one copy: one registry of case
-# kinds). ASan reports those identical duplicate globals; linking the bench against the check
-# library instead of its own copy would remove them (not done yet).
-export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:detect_stack_use_after_return=1:check_initialization_order=1:detect_odr_violation=0
+# Every check on, odr-violation included: libaosuite_gl.so links libaosuite_check.so instead of
+# carrying a second copy of the harness (cli/CMakeLists.txt), so a suite with scene cases, which
+# loads both, has one copy of every global.
+export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:detect_stack_use_after_return=1:check_initialization_order=1
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 export LSAN_OPTIONS=suppressions=$src/tests/sanitize_lsan.supp:print_suppressions=0
 test_start=$SECONDS

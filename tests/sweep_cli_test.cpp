@@ -172,6 +172,47 @@ TEST(SweepCli, FixedParamsApplyToTheirTechnique) {
   EXPECT_TRUE(row.ends_with(",\"blur=none level_weights=1,0,0,0,0\"")) << row;
 }
 
+// A technique's preset (a file beside the grid, or a built-in name): its values under the
+// table's params, its intensity where the grid has no intensity axis, never its radius.
+TEST(SweepCli, APresetAppliesUnderTheTablesParams) {
+  const fs::path dir = scratch("preset");
+  std::ofstream(dir / "p.toml") << "technique = \"gtao\"\n[params]\nslices = 2\nsteps = 5\n"
+                                   "intensity = 1.25\nradius = 7\n";
+  std::ofstream(dir / "grid.toml")
+      << "scenes = [\"corner\"]\nviews = [\"inside\"]\nresolutions = [[64, 36]]\n"
+         "runs = 1\nrays = 16\nunbounded = false\n"
+         "[techniques.gtao]\nradius = [0.5]\npreset = \"p.toml\"\nparams = { steps = 4 }\n"
+         "[techniques.sao]\nradius = [0.5]\npreset = \"tuned\"\n";
+  const Outcome o = run_shell(
+      command(dir, "sweep " + (dir / "grid.toml").string() + " --out " + (dir / "out").string()),
+      dir);
+  ASSERT_EQ(o.rc, 0) << o.err;
+  const auto rows = nlohmann::json::parse(std::ifstream(dir / "out" / "sweep.json"))["rows"];
+  ASSERT_EQ(rows.size(), 2u);
+  EXPECT_EQ(rows[0]["params"]["slices"], "2");  // the preset's
+  EXPECT_EQ(rows[0]["params"]["steps"], "4");   // the table's params win
+  EXPECT_EQ(rows[0]["intensity"], 1.25);        // no intensity axis: the preset's
+  EXPECT_EQ(rows[0]["radius"], 0.5);            // the axis, never the preset's
+  EXPECT_TRUE(rows[1]["params"].contains("radius_scale")) << rows[1];
+  std::ofstream(dir / "bad.toml") << "scenes = [\"corner\"]\nresolutions = [[64, 36]]\n"
+                                     "[techniques.sao]\nradius = [0.5]\npreset = \"p.toml\"\n";
+  const Outcome bad = run_shell(
+      command(dir, "sweep " + (dir / "bad.toml").string() + " --out " + (dir / "b").string()), dir);
+  EXPECT_EQ(bad.rc, 2);
+  EXPECT_NE(bad.err.find("a preset for gtao, not sao"), std::string::npos) << bad.err;
+  // `sweep --preset` gives every table without its own preset one, samples included.
+  std::ofstream(dir / "plain.toml") << "scenes = [\"corner\"]\nviews = [\"inside\"]\n"
+                                       "resolutions = [[64, 36]]\nruns = 1\nrays = 16\n"
+                                       "unbounded = false\n[techniques.ue4]\nradius = [0.5]\n";
+  const Outcome tuned = run_shell(command(dir, "sweep " + (dir / "plain.toml").string() +
+                                                   " --preset tuned --out " + (dir / "t").string()),
+                                  dir);
+  ASSERT_EQ(tuned.rc, 0) << tuned.err;
+  const auto row = nlohmann::json::parse(std::ifstream(dir / "t" / "sweep.json"))["rows"][0];
+  EXPECT_TRUE(row["params"].contains("radius_scale")) << row;
+  EXPECT_LE(row["samples"].get<int>() * 6, 18) << "the tuned UE4 holds the 18-tap budget";
+}
+
 // A grid split over shards and merged is the single run: the same rows in the same order with
 // the same errors and fit (times are measured again, so they are left out of the comparison).
 TEST(SweepCli, ShardsMergeIntoTheSingleRun) {

@@ -13,7 +13,7 @@ int spiral_turns(int samples) {
 
 AoUniformBlock ao_uniform_block(const AoParams& p, const Camera& camera) {
   return {p.samples,
-          p.radius,
+          p.radius * p.radius_scale,
           p.bias,
           p.intensity,
           p.contrast,

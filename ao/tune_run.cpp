@@ -1,0 +1,237 @@
+#include "ao/tune_run.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <deque>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <stdexcept>
+
+#include "ao/timed_render.hpp"
+#include "common/file_io.hpp"
+#include "reference/error_metrics.hpp"
+#include "reference/reference_cache.hpp"
+#include "renderer/renderer.hpp"
+#include "renderer/scene/scene_file.hpp"
+
+namespace aosuite::ao {
+namespace {
+
+namespace rd = aosuite::renderer;
+namespace ref = aosuite::reference;
+namespace fs = std::filesystem;
+
+// One view of one scene at one radius, with its reference and the pixels that count.
+struct Item {
+  const rd::Scene* scene;
+  const rd::View* view;
+  std::size_t scene_index;
+  std::size_t radius_index;
+  float radius;
+  std::string key;  // "scene/view/r"
+  cv::Mat reference, mask;
+};
+
+// The measurements, by parameters (TuneSpace::key) and item, in a JSON file that names the
+// settings they were made under.
+class Measurements {
+ public:
+  Measurements(fs::path file, const TuneSettings& s) : file_(std::move(file)) {
+    header_ = {{"technique", std::string(rd::technique_name(s.technique))},
+               {"width", s.width},
+               {"height", s.height},
+               {"rays", s.rays}};
+    if (file_.empty() || !fs::exists(file_)) return;
+    const std::vector<unsigned char> bytes = read_file(file_);
+    const nlohmann::json j = nlohmann::json::parse(bytes.begin(), bytes.end(), nullptr, false);
+    if (j.is_discarded() || !j.is_object() || !j.contains("settings") || !j.contains("errors"))
+      throw FileError(fmt::format("{}: not a tune state file", file_.string()));
+    if (j["settings"] != header_) {
+      throw FileError(
+          fmt::format("{}: measured under other settings ({}, not {}); give another "
+                      "--state or delete it",
+                      file_.string(), j["settings"].dump(), header_.dump()));
+    }
+    errors_ = j["errors"];
+  }
+
+  std::optional<double> find(const std::string& params, const std::string& item) const {
+    const auto p = errors_.find(params);
+    if (p == errors_.end()) return std::nullopt;
+    const auto e = p->find(item);
+    if (e == p->end() || !e->is_number()) return std::nullopt;
+    return e->get<double>();
+  }
+
+  void add(const std::string& params, const std::string& item, double error) {
+    errors_[params][item] = error;
+    dirty_ = true;
+  }
+
+  void save() {
+    if (file_.empty() || !dirty_) return;
+    if (file_.has_parent_path()) fs::create_directories(file_.parent_path());
+    write_text(file_, nlohmann::json{{"settings", header_}, {"errors", errors_}}.dump(1) + "\n");
+    dirty_ = false;
+  }
+
+ private:
+  fs::path file_;
+  nlohmann::json header_, errors_ = nlohmann::json::object();
+  bool dirty_ = false;
+};
+
+class Evaluator {
+ public:
+  Evaluator(const TuneSettings& s, const TuneSpace& space, Measurements& m)
+      : s_(s), space_(space), m_(m) {
+    for (const std::string& name : s.scenes) scenes_.push_back(rd::load_scene(name));
+    for (std::size_t i = 0; i < scenes_.size(); ++i) add_items(i);
+    if (items_.empty()) throw std::invalid_argument("no view of the scenes draws any geometry");
+  }
+
+  const std::deque<Item>& items() const { return items_; }
+  const std::deque<rd::Scene>& scenes() const { return scenes_; }
+  const std::vector<std::string>& empty_views() const { return empty_views_; }
+  int renders() const { return renders_; }
+  int reused() const { return reused_; }
+
+  double error(const rd::AoParams& params, const Item& item) {
+    const std::string key = space_.key(params);
+    if (const std::optional<double> e = m_.find(key, item.key)) {
+      ++reused_;
+      return *e;
+    }
+    const rd::Images img = renderer_.render(*item.scene, *item.view, settings(params, item));
+    const double e = ref::masked_rmse(img.ao, item.reference, item.mask);
+    ++renders_;
+    m_.add(key, item.key, e);
+    return e;
+  }
+
+  // The median AO time of a frame at the tune's size, over `runs` runs.
+  double ao_ms(const rd::AoParams& params, const Item& item, int runs) {
+    return render_timed(renderer_, *item.scene, *item.view, settings(params, item), runs).gl_ms;
+  }
+
+  // The mean over the items `take` accepts.
+  template <typename Take>
+  double mean(const rd::AoParams& params, Take take) {
+    double sum = 0;
+    int n = 0;
+    for (const Item& item : items_) {
+      if (take(item)) sum += error(params, item), ++n;
+    }
+    return n ? sum / n : 0;
+  }
+
+ private:
+  // The float AO alone, at the item's radius.
+  rd::RenderSettings settings(const rd::AoParams& params, const Item& item) const {
+    rd::RenderSettings rs;
+    rs.width = s_.width, rs.height = s_.height, rs.technique = s_.technique;
+    rs.params = params;
+    rs.params.radius = item.radius;
+    rs.outputs = rd::Outputs{false, false, false, true};
+    return rs;
+  }
+
+  void add_items(std::size_t index) {
+    const rd::Scene& scene = scenes_[index];
+    ref::ReferenceCache cache(scene, ref::default_cache_dir());
+    for (const rd::View& view : scene.views) {
+      rd::RenderSettings gs;
+      gs.width = s_.width, gs.height = s_.height;
+      gs.outputs = rd::Outputs{false, false, false, false};
+      gs.outputs.normal = true;
+      const rd::Images g = renderer_.render(scene, view, gs);
+      if (g.geometry_pixels == 0) {
+        empty_views_.push_back(scene.name + "/" + view.name);
+        continue;
+      }
+      const rd::Camera camera = rd::make_camera(view, s_.width, s_.height);
+      for (std::size_t r = 0; r < s_.radii.size(); ++r) {
+        const float radius = s_.radii[r];
+        items_.push_back(
+            {&scene, &view, index, r, radius,
+             fmt::format("{}/{}/{}", scene.name, view.name, radius),
+             cache.get(camera, g.depth, g.normal, {s_.rays, radius, ref::Variant::kAo}),
+             ref::geometry_mask(g.depth, 8)});
+      }
+    }
+  }
+
+  const TuneSettings& s_;
+  const TuneSpace& space_;
+  Measurements& m_;
+  rd::Renderer renderer_;
+  std::deque<rd::Scene> scenes_;  // items point into it
+  std::deque<Item> items_;
+  std::vector<std::string> empty_views_;
+  int renders_ = 0, reused_ = 0;
+};
+
+void check(const TuneSettings& s) {
+  if (s.scenes.empty()) throw std::invalid_argument("tune needs at least one scene");
+  if (s.radii.empty()) throw std::invalid_argument("tune needs at least one radius");
+  for (float r : s.radii) {
+    if (!(r > 0) || !std::isfinite(r))
+      throw std::invalid_argument(fmt::format("radius must be > 0 (got {})", r));
+  }
+  if (s.width < 16 || s.height < 16) throw std::invalid_argument("tune renders at least 16x16");
+  if (s.search.trials < 1) throw std::invalid_argument("trials must be >= 1");
+  ref::validate({s.rays, s.radii.front(), ref::Variant::kAo});
+}
+
+}  // namespace
+
+TuneResult run_tune(const TuneSettings& s, const std::function<void(const TuneProgress&)>& on) {
+  check(s);
+  const TuneSpace space(s.technique);
+  Measurements m(s.state, s);
+  Evaluator ev(s, space, m);
+  TuneResult out;
+  out.defaults = rd::default_params(s.technique);
+  out.default_taps = depth_taps(space, out.defaults);
+  out.empty_views = ev.empty_views();
+
+  // One search on the items `take` accepts, reporting as `stage`; saves after each trial.
+  auto searched = [&](const std::string& stage, auto take) {
+    return search(
+        space, out.defaults, s.search, [&](const rd::AoParams& p) { return ev.mean(p, take); },
+        [&](int trial, double best) {
+          m.save();
+          if (on) on({stage, trial, s.search.trials, best});
+        });
+  };
+  const std::size_t n = ev.scenes().size();
+  for (std::size_t f = 0; n >= 2 && f < n; ++f) {
+    const std::string name = ev.scenes()[f].name;
+    const SearchResult r = searched(fmt::format("fold {}/{} (held out: {})", f + 1, n, name),
+                                    [f](const Item& i) { return i.scene_index != f; });
+    Fold fold{name, {}, {}, space.key(r.best)};
+    for (std::size_t k = 0; k < s.radii.size(); ++k) {
+      auto held = [f, k](const Item& i) { return i.scene_index == f && i.radius_index == k; };
+      fold.default_error.push_back(ev.mean(out.defaults, held));
+      fold.tuned_error.push_back(ev.mean(r.best, held));
+    }
+    out.folds.push_back(std::move(fold));
+  }
+  const SearchResult all = searched("all scenes", [](const Item&) { return true; });
+  out.tuned = all.best;
+  out.tuned_error = all.error;
+  out.tuned_taps = depth_taps(space, out.tuned);
+  out.default_error = ev.mean(out.defaults, [](const Item&) { return true; });
+  m.save();
+  // Timed on the view with the most geometry pixels: the one where the AO does most work.
+  const Item& busiest = *std::ranges::max_element(
+      ev.items(), {}, [](const Item& i) { return cv::countNonZero(i.mask); });
+  out.default_ms = ev.ao_ms(out.defaults, busiest, 9);
+  out.tuned_ms = ev.ao_ms(out.tuned, busiest, 9);
+  out.timed_view = busiest.scene->name + "/" + busiest.view->name;
+  out.renders = ev.renders(), out.reused = ev.reused();
+  return out;
+}
+
+}  // namespace aosuite::ao

@@ -1,0 +1,61 @@
+// `aosuite tune`: one technique's parameters searched (ao/tune_search.hpp) against the
+// ray-traced reference at the same radius (the AO term's RMSE over geometry pixels, as
+// `aosuite error` prints it under "all"), over every view of a set of scenes at one or more
+// radii, validated by leaving one scene out at a time: each fold searches on the other scenes
+// and is measured on the one left out, which the search never saw. The preset is then searched
+// on every scene. Measurements are kept in a state file, so a rerun with the same settings
+// (interrupted or not) measures nothing twice and gives the same result.
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "ao/tune_search.hpp"
+
+namespace aosuite::ao {
+
+struct TuneSettings {
+  renderer::Technique technique = renderer::Technique::kGtao;
+  std::vector<float> radii{1};
+  std::vector<std::string> scenes;  // built-in names or scene files; every view of each
+  int width = 320, height = 180;
+  int rays = 256;  // the reference's rays per pixel
+  SearchOptions search;
+  std::filesystem::path state;  // the measurements; empty: kept in memory only
+};
+
+// One scene left out: its error under the defaults and under the parameters searched on the
+// other scenes, per radius (TuneSettings::radii order), each the mean over the scene's views.
+struct Fold {
+  std::string held_out;
+  std::vector<double> default_error, tuned_error;
+  std::string params;  // TuneSpace::key of what this fold's search found
+};
+
+struct TuneResult {
+  renderer::AoParams defaults, tuned;         // the technique's defaults; searched on every scene
+  double default_error = 0, tuned_error = 0;  // mean over every scene, view and radius
+  int default_taps = 0, tuned_taps = 0;
+  // The median AO time of one frame at the tune's size, on the view with the most geometry:
+  // what the depth-tap budget stands for, measured, not used by the search (not repeatable).
+  double default_ms = 0, tuned_ms = 0;
+  std::string timed_view;                // "scene/view"
+  std::vector<Fold> folds;               // one per scene when there are two or more
+  int renders = 0, reused = 0;           // measurements made, and taken from the state file
+  std::vector<std::string> empty_views;  // "scene/view" that draw no geometry: left out
+};
+
+struct TuneProgress {
+  std::string stage;  // "fold 2/6 (held out: village)" or "all scenes"
+  int trial = 0, trials = 0;
+  double best = 0;
+};
+
+// Throws std::invalid_argument for a bad setting (no scene, a technique with nothing to search)
+// and FileError for a state file made with other settings or unreadable.
+TuneResult run_tune(const TuneSettings& settings,
+                    const std::function<void(const TuneProgress&)>& on_progress = {});
+
+}  // namespace aosuite::ao

@@ -1,0 +1,172 @@
+// `aosuite tune`: searches one technique's parameters against the ray-traced reference
+// (ao/tune_run.hpp), prints each held-out scene's error under the defaults and tuned, and
+// writes the preset searched on every scene, with the command that made it.
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "ao/preset.hpp"
+#include "ao/tune_run.hpp"
+#include "cli/commands.hpp"
+#include "common/file_io.hpp"
+#include "renderer/scene/scene.hpp"
+
+namespace aosuite::cli {
+namespace {
+
+namespace rd = aosuite::renderer;
+
+struct TuneArgs {
+  std::string technique, out, json;
+  std::vector<std::string> scenes;
+  std::string state;  // default: beside --out
+  ao::TuneSettings s;
+};
+
+// The command that makes the same preset, for its header.
+std::string command_line(const TuneArgs& a) {
+  std::string radii;
+  for (float r : a.s.radii) radii += fmt::format(" --radius {:g}", r);
+  return fmt::format(
+      "aosuite tune --technique {}{} --scenes {} --width {} --height {} --rays {} --trials {} "
+      "--seed {} --budget-taps {}",
+      a.technique, radii, fmt::join(a.s.scenes, ","), a.s.width, a.s.height, a.s.rays,
+      a.s.search.trials, a.s.search.seed, a.s.search.budget_taps);
+}
+
+struct Spread {
+  double mean = 0, sd = 0;
+};
+
+Spread spread(const std::vector<double>& v) {
+  Spread s;
+  for (double x : v) s.mean += x / static_cast<double>(v.size());
+  for (double x : v) s.sd += (x - s.mean) * (x - s.mean);
+  s.sd = v.size() > 1 ? std::sqrt(s.sd / static_cast<double>(v.size() - 1)) : 0;
+  return s;
+}
+
+// Per radius: the held-out error of every fold, under the defaults and tuned.
+std::vector<double> column(const std::vector<ao::Fold>& folds, std::size_t k, bool tuned) {
+  std::vector<double> out;
+  for (const ao::Fold& f : folds) out.push_back(tuned ? f.tuned_error[k] : f.default_error[k]);
+  return out;
+}
+
+std::string radii_text(const std::vector<float>& radii) {
+  std::string out;
+  for (float r : radii) out += (out.empty() ? "" : ", ") + fmt::format("{:g}", r);
+  return out;
+}
+
+nlohmann::ordered_json result_json(const TuneArgs& a, const ao::TuneResult& r) {
+  const ao::TuneSpace space(a.s.technique);
+  nlohmann::ordered_json j;
+  j["technique"] = a.technique, j["radii"] = a.s.radii, j["scenes"] = a.s.scenes;
+  j["width"] = a.s.width, j["height"] = a.s.height, j["rays"] = a.s.rays;
+  j["trials"] = a.s.search.trials, j["seed"] = a.s.search.seed;
+  j["budget_taps"] = a.s.search.budget_taps;
+  j["preset"] = space.key(r.tuned), j["default"] = space.key(r.defaults);
+  j["error"] = {{"tuned", r.tuned_error}, {"default", r.default_error}};
+  j["taps"] = {{"tuned", r.tuned_taps}, {"default", r.default_taps}};
+  j["ao_ms"] = {{"tuned", r.tuned_ms}, {"default", r.default_ms}, {"view", r.timed_view}};
+  nlohmann::ordered_json folds = nlohmann::ordered_json::array();
+  for (const ao::Fold& f : r.folds) {
+    folds.push_back({{"held_out", f.held_out},
+                     {"default", f.default_error},
+                     {"tuned", f.tuned_error},
+                     {"params", f.params}});
+  }
+  j["folds"] = folds;
+  j["empty_views"] = r.empty_views;
+  return j;
+}
+
+void print_result(const TuneArgs& a, const ao::TuneResult& r) {
+  const ao::TuneSpace space(a.s.technique);
+  fmt::print("{} at r = {} on {} ({}x{}, reference {} rays), at most {} depth taps\n", a.technique,
+             radii_text(a.s.radii), fmt::join(a.s.scenes, ", "), a.s.width, a.s.height, a.s.rays,
+             a.s.search.budget_taps);
+  for (const std::string& v : r.empty_views) fmt::print("  {}: draws no geometry, left out\n", v);
+  if (!r.folds.empty()) {
+    fmt::print("AO RMSE on the scene left out (searched on the others):\n");
+    fmt::print("  {:<14} {:>6} {:>9} {:>9}\n", "held out", "r", "default", "tuned");
+    for (const ao::Fold& f : r.folds) {
+      for (std::size_t k = 0; k < a.s.radii.size(); ++k)
+        fmt::print("  {:<14} {:>6g} {:>9.4f} {:>9.4f}\n", f.held_out, a.s.radii[k],
+                   f.default_error[k], f.tuned_error[k]);
+    }
+    for (std::size_t k = 0; k < a.s.radii.size(); ++k) {
+      const Spread d = spread(column(r.folds, k, false)), t = spread(column(r.folds, k, true));
+      fmt::print(
+          "  r = {:g}: default {:.4f} ± {:.4f}, tuned {:.4f} ± {:.4f} ({:+.1f} %), mean ± sd "
+          "over {} scenes\n",
+          a.s.radii[k], d.mean, d.sd, t.mean, t.sd, 100 * (t.mean / d.mean - 1), r.folds.size());
+    }
+  }
+  fmt::print("preset, searched on every scene: {}\n  {}\n", a.out, space.key(r.tuned));
+  fmt::print(
+      "  AO RMSE {:.4f} (defaults {:.4f}); {} depth taps (defaults {}); AO {:.2f} ms a "
+      "frame of {} at {}x{} (defaults {:.2f} ms)\n",
+      r.tuned_error, r.default_error, r.tuned_taps, r.default_taps, r.tuned_ms, r.timed_view,
+      a.s.width, a.s.height, r.default_ms);
+  fmt::print("measurements: {} rendered, {} reused from {}\n", r.renders, r.reused, a.state);
+}
+
+int run_tune(TuneArgs& a) {
+  a.s.technique = rd::parse_technique(a.technique);
+  a.s.scenes = a.scenes.empty() ? rd::builtin_scene_names() : a.scenes;
+  if (a.out.empty()) a.out = fmt::format("reports/tune/{}.toml", a.technique);
+  if (a.state.empty()) a.state = a.out + ".state.json";
+  a.s.state = a.state;
+  const bool tty = isatty(fileno(stderr));
+  const ao::TuneResult r = ao::run_tune(a.s, [&](const ao::TuneProgress& p) {
+    // One line per stage on a pipe; the running best in place on a terminal.
+    if (tty || p.trial == p.trials)
+      fmt::print(stderr, "{}{}: trial {}/{}, best AO RMSE {:.5f}{}", tty ? "\r" : "", p.stage,
+                 p.trial, p.trials, p.best, tty && p.trial < p.trials ? "" : "\n");
+  });
+  const ao::TuneSpace space(a.s.technique);
+  ao::Preset preset{a.out, a.s.technique, space.entries(r.tuned)};
+  std::vector<std::string> header = {
+      fmt::format("Made by `{}`.", command_line(a)),
+      fmt::format("AO RMSE {:.4f} against the ray-traced reference on {} (defaults {:.4f}).",
+                  r.tuned_error, fmt::join(a.s.scenes, ", "), r.default_error),
+      fmt::format("{} depth taps per pixel (defaults {}).", r.tuned_taps, r.default_taps)};
+  ao::write_preset(preset, header);
+  if (!a.json.empty()) write_text(a.json, result_json(a, r).dump(2) + "\n");
+  print_result(a, r);
+  return kExitSame;
+}
+
+}  // namespace
+
+void add_tune_command(CLI::App& app, int& rc) {
+  auto a = std::make_shared<TuneArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "tune", "Search a technique's parameters against the ray-traced reference; write a preset");
+  cmd->add_option("--technique", a->technique, rd::technique_names("|"))->required();
+  cmd->add_option("--radius", a->s.radii, "radius in scene units, repeatable")
+      ->capture_default_str();
+  cmd->add_option("--scenes", a->scenes,
+                  "built-in scenes or scene files, comma-separated (default: every built-in)")
+      ->delimiter(',');
+  cmd->add_option("--width", a->s.width)->capture_default_str();
+  cmd->add_option("--height", a->s.height)->capture_default_str();
+  cmd->add_option("--rays", a->s.rays, "reference rays per pixel")->capture_default_str();
+  cmd->add_option("--trials", a->s.search.trials, "candidates measured per search")
+      ->capture_default_str();
+  cmd->add_option("--seed", a->s.search.seed)->capture_default_str();
+  cmd->add_option("--budget-taps", a->s.search.budget_taps,
+                  "most depth fetches per pixel (18: GTAO's High preset)")
+      ->capture_default_str();
+  cmd->add_option("--out", a->out, "the preset (default reports/tune/TECHNIQUE.toml)");
+  cmd->add_option("--state", a->state,
+                  "the measurements, reused by a rerun (default: the preset's name + .state.json)");
+  cmd->add_option("--json", a->json, "write the result as JSON");
+  guarded(cmd, rc, "tune", [a] { return run_tune(*a); });
+}
+
+}  // namespace aosuite::cli

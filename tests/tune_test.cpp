@@ -1,0 +1,231 @@
+// `aosuite tune`'s parts: the search space (ao/tune_space.hpp) round-trips parameters and
+// presets; the search (ao/tune_search.hpp) is deterministic, holds the depth-tap budget and
+// finds a known minimum; a whole tune on llvmpipe (ao/tune_run.hpp) never ends worse than the
+// defaults it starts from, validates on the scenes it left out, and resumes from its state
+// without rendering again.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <opencv2/core.hpp>
+#include <set>
+
+#include "ao/preset.hpp"
+#include "ao/tune_run.hpp"
+#include "common/file_io.hpp"
+#include "reference/error_metrics.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+namespace rd = aosuite::renderer;
+using aosuite::ao::SearchOptions;
+using aosuite::ao::TuneSpace;
+
+std::vector<rd::Technique> tunable() {
+  std::vector<rd::Technique> out;
+  for (const rd::TechniqueInfo& t : rd::techniques())
+    if (t.space == rd::Space::kScreen) out.push_back(t.id);
+  return out;
+}
+
+TEST(TuneSpace, EveryScreenSpaceTechniqueHasDimensionsAndPmiNone) {
+  for (rd::Technique t : tunable()) {
+    const TuneSpace space(t);
+    std::set<std::string> keys;
+    for (const aosuite::ao::Dimension& d : space.dimensions()) {
+      EXPECT_TRUE(rd::applies(*d.spec, t)) << d.spec->key;
+      keys.insert(std::string(d.spec->key));
+    }
+    EXPECT_TRUE(keys.count("radius_scale")) << rd::technique_name(t);
+    EXPECT_FALSE(keys.count("radius")) << "the radius is the study's";
+  }
+  EXPECT_THROW(TuneSpace{rd::Technique::kPmi}, std::invalid_argument);
+}
+
+TEST(TuneSpace, PointsRoundTripThroughParametersAndPresetFiles) {
+  const fs::path dir = fs::temp_directory_path() / "aosuite_tune_space";
+  fs::create_directories(dir);
+  cv::RNG rng(7);
+  for (rd::Technique t : tunable()) {
+    const TuneSpace space(t);
+    for (int i = 0; i < 20; ++i) {
+      std::vector<double> p(space.dimensions().size());
+      for (double& x : p) x = rng.uniform(0.0, 1.0);
+      const rd::AoParams params = space.params(p, rd::default_params(t));
+      // The point of rounded parameters stands for the same parameters.
+      EXPECT_EQ(space.key(space.params(space.point(params), rd::default_params(t))),
+                space.key(params));
+      // A preset written from them reads back to them.
+      const aosuite::ao::Preset written{dir / "p.toml", t, space.entries(params)};
+      aosuite::ao::write_preset(written, {"a comment"});
+      rd::AoParams read = rd::default_params(t);
+      aosuite::ao::apply_preset(aosuite::ao::read_preset(dir / "p.toml"), t, read);
+      EXPECT_EQ(space.key(read), space.key(params)) << rd::technique_name(t);
+      EXPECT_NO_THROW(rd::check_params(read));
+    }
+  }
+  fs::remove_all(dir);
+}
+
+// A bowl over GTAO's space with its minimum at a known point: the search must get close to
+// it, never measure a point over the budget or the same parameters twice, and give the same
+// answer for the same seed.
+TEST(TuneSearch, FindsAKnownMinimumWithinTheBudgetDeterministically) {
+  const TuneSpace space(rd::Technique::kGtao);
+  const std::vector<double> target(space.dimensions().size(), 0.3);
+  auto distance = [&](const rd::AoParams& p) {
+    const std::vector<double> x = space.point(p);
+    double e = 0;
+    for (std::size_t i = 0; i < x.size(); ++i) e += (x[i] - target[i]) * (x[i] - target[i]);
+    return e;
+  };
+  std::set<std::string> measured;
+  auto bowl = [&](const rd::AoParams& p) {
+    EXPECT_LE(aosuite::ao::depth_taps(space, p), 12);
+    EXPECT_TRUE(measured.insert(space.key(p)).second) << "measured twice: " << space.key(p);
+    return distance(p);
+  };
+  SearchOptions o;
+  o.trials = 120, o.budget_taps = 12, o.seed = 3;
+  const rd::AoParams start = rd::default_params(rd::Technique::kGtao);
+  const double at_start = distance(start);
+  int calls = 0;
+  const aosuite::ao::SearchResult a =
+      aosuite::ao::search(space, start, o, bowl, [&](int trial, double) { calls = trial; });
+  EXPECT_EQ(a.trials, calls);
+  EXPECT_LE(a.trials, o.trials);
+  EXPECT_LT(a.error, at_start / 10);
+  EXPECT_LT(a.error, 0.02);
+  measured.clear();
+  const aosuite::ao::SearchResult b = aosuite::ao::search(space, start, o, bowl);
+  EXPECT_EQ(space.key(a.best), space.key(b.best));
+  EXPECT_EQ(a.error, b.error);
+  o.budget_taps = 1;  // no GTAO configuration has fewer than 2 taps
+  EXPECT_THROW(aosuite::ao::search(space, start, o, bowl), std::invalid_argument);
+}
+
+TEST(TuneSearch, StartsFromTheGivenParameters) {
+  const TuneSpace space(rd::Technique::kSao);
+  const rd::AoParams start = rd::default_params(rd::Technique::kSao);
+  std::string first;
+  SearchOptions o;
+  o.trials = 3;
+  aosuite::ao::search(space, start, o, [&](const rd::AoParams& p) {
+    if (first.empty()) first = space.key(p);
+    return 1.0;
+  });
+  EXPECT_EQ(first, space.key(start));
+
+  // UE4's defaults (8 directions: 48 taps) start at their nearest affordable version, 3.
+  const TuneSpace ue4(rd::Technique::kUe4);
+  rd::AoParams lowered = rd::default_params(rd::Technique::kUe4);
+  first.clear();
+  aosuite::ao::search(ue4, lowered, o, [&](const rd::AoParams& p) {
+    if (first.empty()) first = ue4.key(p);
+    return 1.0;
+  });
+  lowered.samples = 3;
+  EXPECT_EQ(first, ue4.key(lowered));
+}
+
+TEST(TuneMetric, MaskedRmseIsTheErrorReportsRmse) {
+  cv::RNG rng(11);
+  for (int i = 0; i < 10; ++i) {
+    cv::Mat a(40, 50, CV_32F), b(40, 50, CV_32F), depth(40, 50, CV_32F);
+    rng.fill(a, cv::RNG::UNIFORM, 0, 1), rng.fill(b, cv::RNG::UNIFORM, 0, 1);
+    rng.fill(depth, cv::RNG::UNIFORM, -1, 3);  // some background (<= 0)
+    const auto report = aosuite::reference::measure_error(a, b, depth, {8, 0.05f, 64});
+    EXPECT_NEAR(aosuite::reference::masked_rmse(a, b, aosuite::reference::geometry_mask(depth, 8)),
+                report.all.rmse, 1e-8);  // cv::norm sums float differences
+  }
+}
+
+class TuneRun : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("aosuite_tune_" +
+            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    setenv("AOSUITE_REFERENCE_CACHE", (dir_ / "refs").c_str(), 1);
+    s_.technique = rd::Technique::kGtao;
+    s_.scenes = {"corner", "spheres"};
+    s_.radii = {0.5f, 1};
+    s_.width = 64, s_.height = 36, s_.rays = 16;
+    s_.search.trials = 8;
+    s_.state = dir_ / "state.json";
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  fs::path dir_;
+  aosuite::ao::TuneSettings s_;
+};
+
+TEST_F(TuneRun, NeverWorseThanTheDefaultsAndValidatedOnEachSceneLeftOut) {
+  int progress = 0;
+  const aosuite::ao::TuneResult r =
+      aosuite::ao::run_tune(s_, [&](const aosuite::ao::TuneProgress&) { ++progress; });
+  EXPECT_GT(progress, 0);
+  // GTAO's defaults fit the default budget and are the search's start.
+  EXPECT_LE(r.tuned_error, r.default_error);
+  EXPECT_GT(r.default_error, 0);
+  EXPECT_LE(r.tuned_taps, s_.search.budget_taps);
+  ASSERT_EQ(r.folds.size(), 2u);
+  EXPECT_EQ(r.folds[0].held_out, "corner");
+  EXPECT_EQ(r.folds[1].held_out, "spheres");
+  for (const aosuite::ao::Fold& f : r.folds) {
+    ASSERT_EQ(f.tuned_error.size(), 2u);
+    for (double e : f.tuned_error) EXPECT_TRUE(std::isfinite(e) && e > 0 && e < 1);
+    for (double e : f.default_error) EXPECT_TRUE(std::isfinite(e) && e > 0 && e < 1);
+  }
+  EXPECT_GT(r.renders, 0);
+  EXPECT_GT(r.tuned_ms, 0);
+
+  // The same settings again: every measurement comes from the state, the answer is the same.
+  const aosuite::ao::TuneResult again = aosuite::ao::run_tune(s_);
+  EXPECT_EQ(again.renders, 0);
+  const TuneSpace space(s_.technique);
+  EXPECT_EQ(space.key(again.tuned), space.key(r.tuned));
+  EXPECT_EQ(again.tuned_error, r.tuned_error);
+
+  // A state made under other settings is refused, not mixed in.
+  s_.rays = 32;
+  EXPECT_THROW(aosuite::ao::run_tune(s_), aosuite::FileError);
+}
+
+TEST_F(TuneRun, AnInterruptedTuneResumesToTheSameResult) {
+  const aosuite::ao::TuneResult whole = aosuite::ao::run_tune(s_);
+  fs::remove(s_.state);
+  // Stop the first run partway (as Ctrl-C would), then run it again to the end.
+  try {
+    aosuite::ao::run_tune(s_, [](const aosuite::ao::TuneProgress& p) {
+      if (p.stage.rfind("fold 2", 0) == 0) throw std::runtime_error("interrupted");
+    });
+    FAIL() << "not interrupted";
+  } catch (const std::runtime_error&) {
+  }
+  const aosuite::ao::TuneResult resumed = aosuite::ao::run_tune(s_);
+  EXPECT_GT(resumed.reused, 0);
+  EXPECT_LT(resumed.renders, whole.renders);
+  const TuneSpace space(s_.technique);
+  EXPECT_EQ(space.key(resumed.tuned), space.key(whole.tuned));
+  EXPECT_EQ(resumed.tuned_error, whole.tuned_error);
+}
+
+TEST_F(TuneRun, BadSettingsAreRefused) {
+  s_.scenes.clear();
+  EXPECT_THROW(aosuite::ao::run_tune(s_), std::invalid_argument);
+  s_.scenes = {"corner"};
+  s_.radii = {0};
+  EXPECT_THROW(aosuite::ao::run_tune(s_), std::invalid_argument);
+  s_.radii = {1};
+  s_.technique = rd::Technique::kPmi;
+  EXPECT_THROW(aosuite::ao::run_tune(s_), std::invalid_argument);
+  s_.technique = rd::Technique::kGtao;
+  std::ofstream(s_.state) << "{not json";
+  EXPECT_THROW(aosuite::ao::run_tune(s_), aosuite::FileError);
+}
+
+}  // namespace
