@@ -18,15 +18,20 @@ void* run(void* work) noexcept {
 // or more than a cpu_set_t holds), which leaves the placement to the kernel.
 bool elsewhere(pthread_attr_t& attr) {
   const int here = sched_getcpu();
-  cpu_set_t cpus;
-  if (here < 0 || here >= CPU_SETSIZE || sched_getaffinity(0, sizeof cpus, &cpus) != 0) {
-    return false;
-  }
-  CPU_CLR(here, &cpus);
-  return CPU_COUNT(&cpus) > 0 && pthread_attr_setaffinity_np(&attr, sizeof cpus, &cpus) == 0;
+  cpu_set_t allowed;
+  if (sched_getaffinity(0, sizeof allowed, &allowed) != 0) return false;
+  cpu_set_t cpus = cpus_beside(here, allowed);
+  return !CPU_EQUAL(&cpus, &allowed) && pthread_attr_setaffinity_np(&attr, sizeof cpus, &cpus) == 0;
 }
 
 }  // namespace
+
+cpu_set_t cpus_beside(int here, cpu_set_t allowed) {
+  if (here < 0 || here >= CPU_SETSIZE || !CPU_ISSET(here, &allowed) || CPU_COUNT(&allowed) < 2)
+    return allowed;
+  CPU_CLR(here, &allowed);
+  return allowed;
+}
 
 ThreadBeside::ThreadBeside(std::function<void()> work) {
   auto owned = std::make_unique<std::function<void()>>(std::move(work));

@@ -7,11 +7,16 @@
 #pragma once
 
 #include <pthread.h>
+#include <sched.h>
 
 #include <exception>
 #include <functional>
 
 namespace aosuite {
+
+// `allowed` without `here` (the CPU the creator is on), unless that leaves none or `here` is no
+// CPU a cpu_set_t holds: then `allowed` itself. What ThreadBeside gives its thread.
+cpu_set_t cpus_beside(int here, cpu_set_t allowed);
 
 // Runs `work` on a new thread, joined on destruction (as std::jthread), allowed every CPU the
 // creating thread may use but the one it was on, when there is another (else the creator's
