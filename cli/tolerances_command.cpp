@@ -1,9 +1,12 @@
 // `aosuite tolerances suggest SUITE --report DIR...`: each case's tightest tolerance that passes
-// every given run, written beside the goldens for review (harness/tolerance_suggest.hpp).
+// every given run, written beside the goldens for review (harness/tolerance_suggest.hpp). With
+// no SUITE the reports are folder-mode runs, and the folder-mode flags of the loosest of those
+// tolerances are printed: folder mode judges every image by one.
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <filesystem>
+#include <optional>
 #include <stdexcept>
 
 #include "cli/commands.hpp"
@@ -45,10 +48,24 @@ std::string limits_text(const hs::Suggestion& s) {
   return fmt::format("{}", fmt::join(parts, ", "));
 }
 
+// Folder mode has no suite file to write beside: the flags that set the one tolerance every
+// image passes under are printed.
+int finish_folder_mode(const std::vector<hs::Suggestion>& all, const hs::Suite& suite,
+                       std::size_t suggested) {
+  const std::optional<hs::Tolerance> t = hs::loosest(all);
+  fmt::print(
+      "folder mode, one tolerance for every image ({} of {} suggested):\n  aosuite check {} {}\n",
+      suggested, all.size(), suite.check_args, hs::folder_flags(*t));
+  return suggested == all.size() ? kExitSame : kExitDifferent;
+}
+
 int run_suggest(const SuggestArgs& a) {
-  hs::Suite suite = hs::load_suite(a.suite);
-  if (!a.goldens.empty()) suite.goldens = a.goldens, suite.goldens_given = true;
   const std::vector<fs::path> reports(a.reports.begin(), a.reports.end());
+  const bool folders = a.suite.empty();
+  if (folders && (!a.goldens.empty() || !a.out.empty()))
+    throw std::invalid_argument("folder mode takes no --goldens or --out: its flags are printed");
+  hs::Suite suite = folders ? hs::folder_suite_of(reports.front()) : hs::load_suite(a.suite);
+  if (!a.goldens.empty()) suite.goldens = a.goldens, suite.goldens_given = true;
   const hs::SuggestOptions options{.margin_percent = a.margin};
   const std::vector<hs::Suggestion> all = hs::suggest(suite, reports, options);
   std::size_t width = 4, suggested = 0;
@@ -63,8 +80,9 @@ int run_suggest(const SuggestArgs& a) {
     throw std::runtime_error(fmt::format(
         "nothing to suggest: no case of {} has two usable runs in the {} report{} given (reasons "
         "above); nothing written",
-        a.suite, reports.size(), reports.size() == 1 ? "" : "s"));
+        folders ? "the folders" : a.suite, reports.size(), reports.size() == 1 ? "" : "s"));
   }
+  if (folders) return finish_folder_mode(all, suite, suggested);
   const fs::path out =
       a.out.empty() ? suite.goldens / "tolerances.suggested.toml" : fs::path(a.out);
   write_text(out, hs::suggestions_toml(suite, all, reports, options));
@@ -86,7 +104,9 @@ void add_tolerances_command(CLI::App& app, int& rc) {
       "of check), written beside the goldens for review. Exit status: 0 every case suggested, "
       "1 some not (listed, with why), 2 none or bad input (nothing written).");
   auto a = std::make_shared<SuggestArgs>();
-  suggest->add_option("suite", a->suite, "suite file the reports are runs of")->required();
+  suggest->add_option("suite", a->suite,
+                      "suite file the reports are runs of; none for folder-mode reports (the "
+                      "flags of one tolerance for every image are printed)");
   suggest->add_option("--report", a->reports, "report folder of a check run (repeat, 2 or more)")
       ->required();
   suggest->add_option("--goldens", a->goldens, "goldens folder, if check was given --goldens");

@@ -229,6 +229,8 @@ json to_json(const RunResults& r) {
           {"cases", cases}};
 }
 
+std::string absolute_path(const fs::path& p) { return fs::absolute(p).lexically_normal().string(); }
+
 RunResults run_from_json(const json& j) {
   RunResults r;
   r.suite = j.at("suite"), r.suite_file = j.at("suite_file"), r.environment = j.at("environment");

@@ -92,6 +92,9 @@ void keep_in_report(const std::filesystem::path& file, const std::vector<unsigne
 
 // Reads `dir`/results.json; throws naming the file if it is missing or malformed.
 RunResults read_results(const std::filesystem::path& dir);
+
+// What results.json records of the suite's paths: absolute, as bless may run elsewhere.
+std::string absolute_path(const std::filesystem::path& p);
 void write_results(const std::filesystem::path& dir, const RunResults& r);
 
 struct Counts {

@@ -482,9 +482,6 @@ std::vector<const Case*> select_some(const Suite& suite, const Selection& s) {
       printable(suite.file.string()), printable(why), suite.cases.size(), list_command(suite)));
 }
 
-// What results.json records of the suite's paths: absolute, as bless may run elsewhere.
-std::string absolute_path(const fs::path& p) { return fs::absolute(p).lexically_normal().string(); }
-
 RunResults start(const Suite& suite, const RunOptions& o, const std::vector<const Case*>& cases,
                  bool may_render, Makers& first) {
   RunResults run;

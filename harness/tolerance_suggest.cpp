@@ -26,7 +26,7 @@ struct Run {
 // Each report, checked to be a run of `suite` against the goldens it has.
 std::vector<Run> read_runs(const Suite& suite, const std::vector<fs::path>& reports) {
   std::vector<Run> runs;
-  const std::string goldens = fs::absolute(suite.goldens).lexically_normal().string();
+  const std::string goldens = absolute_path(suite.goldens);
   for (const fs::path& dir : reports) {
     const std::string file = printable((dir / "results.json").string());
     Run run{dir, read_results(dir)};
@@ -35,9 +35,22 @@ std::vector<Run> read_runs(const Suite& suite, const std::vector<fs::path>& repo
       std::error_code ec;
       if (fs::equivalent(other.dir, dir, ec)) throw std::runtime_error(file + ": given twice");
     }
-    if (!r.expected_folder.empty()) {
-      throw std::runtime_error(file + ": a folder-mode run, not a run of suite '" + suite.name +
-                               "'");
+    const bool folders = !suite.expected.empty();
+    if (folders != !r.expected_folder.empty()) {
+      throw std::runtime_error(
+          folders ? file + ": a run of suite '" + r.suite + "', not of folder mode"
+                  : file + ": a folder-mode run, not a run of suite '" + suite.name + "'");
+    }
+    if (folders) {
+      if (r.suite_file != absolute_path(suite.file) ||
+          r.expected_folder != absolute_path(suite.expected)) {
+        throw std::runtime_error(fmt::format("{}: compared {} with {}, not {} with {}", file,
+                                             printable(r.suite_file), printable(r.expected_folder),
+                                             printable(absolute_path(suite.file)),
+                                             printable(absolute_path(suite.expected))));
+      }
+      runs.push_back(std::move(run));
+      continue;
     }
     if (r.suite != suite.name) {
       throw std::runtime_error(
@@ -145,7 +158,9 @@ std::string observe(const Suite& suite, const Case& c, const Run& run, const Cas
     if (v->golden_hash.empty()) return at + "made by an older aosuite (check again)";
     if (!v->comparable)
       return at + image + ": " + printable(v->message) + " (no tolerance passes it)";
-    const fs::path now = golden_now(suite.goldens, c.id, v->golden);
+    // Folder mode's goldens stay where the run found them: --expected, by relative path.
+    const fs::path now =
+        suite.expected.empty() ? golden_now(suite.goldens, c.id, v->golden) : fs::path(v->golden);
     if (!golden_unchanged(now, v->golden_hash)) {
       return at + image + ": the golden " + printable(now.string()) +
              " changed since (check again)";
@@ -249,6 +264,60 @@ std::vector<Suggestion> suggest(const Suite& suite, const std::vector<fs::path>&
   const std::vector<Run> runs = read_runs(suite, reports);
   std::vector<Suggestion> out;
   for (const Case& c : suite.cases) out.push_back(suggest_case(suite, c, runs, options));
+  return out;
+}
+
+Suite folder_suite_of(const fs::path& report) {
+  const RunResults r = read_results(report);
+  if (r.expected_folder.empty()) {
+    throw std::runtime_error(printable((report / "results.json").string()) + ": a run of suite '" +
+                             r.suite + "'; name its suite file");
+  }
+  Suite suite = folder_suite(r.suite_file, r.expected_folder, Tolerance{});
+  for (Case& c : suite.cases) {
+    const auto judged = std::ranges::find(r.cases, c.id, &CaseResult::id);
+    if (judged != r.cases.end()) c.tolerance = judged->tolerance;
+  }
+  return suite;
+}
+
+std::optional<Tolerance> loosest(const std::vector<Suggestion>& suggestions) {
+  std::optional<Tolerance> out;
+  for (const Suggestion& s : suggestions) {
+    if (!s.reason.empty()) continue;
+    if (!out) {
+      out = s.proposed;
+      continue;
+    }
+    out->resemble = out->resemble || s.proposed.resemble;
+    out->max_mismatch_percent =
+        std::max(out->max_mismatch_percent, s.proposed.max_mismatch_percent);
+    out->max_channel_delta = std::max(out->max_channel_delta, s.proposed.max_channel_delta);
+    std::vector<double> limits;
+    for_each_limit(s.proposed, [&](auto, auto&, auto& l) { limits.push_back(l.limit); });
+    std::size_t i = 0;
+    // Folder mode judges every image under one tolerance, so their gates line up.
+    for_each_limit(*out, [&](auto, auto&, metric::Limit& l) {
+      if (i < limits.size())
+        l.limit = l.is_max ? std::max(l.limit, limits[i]) : std::min(l.limit, limits[i]);
+      ++i;
+    });
+  }
+  return out;
+}
+
+std::string folder_flags(const Tolerance& t) {
+  std::string out;
+  if (t.resemble) {
+    out = fmt::format("--max-mismatch {} --max-channel-delta {}", t.max_mismatch_percent,
+                      t.max_channel_delta);
+  }
+  for (const metric::Gates& g : t.gates) {
+    for (const metric::Limit& l : g.limits) {
+      out += fmt::format("{}--gate {}.{}_{}={}", out.empty() ? "" : " ", g.metric->name,
+                         l.is_max ? "max" : "min", l.stat, l.limit);
+    }
+  }
   return out;
 }
 

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -39,6 +40,19 @@ struct Suggestion {
 std::vector<Suggestion> suggest(const Suite& suite,
                                 const std::vector<std::filesystem::path>& reports,
                                 const SuggestOptions& options);
+
+// Folder mode: the suite `check --actual A --expected E` made for the folders `report` (a
+// folder-mode run's report) compared, each image under the tolerance that run judged it by.
+// Throws std::runtime_error naming the results.json when it is a suite's run or unreadable.
+Suite folder_suite_of(const std::filesystem::path& report);
+
+// Folder mode has one tolerance for every image: the loosest of the suggestions made (each
+// max limit the largest, each min limit the smallest); nothing when none was made.
+std::optional<Tolerance> loosest(const std::vector<Suggestion>& suggestions);
+
+// The folder-mode flags that set `t`: "--max-mismatch 0.5 --max-channel-delta 3
+// --gate flip.max_mean=0.0123".
+std::string folder_flags(const Tolerance& t);
 
 // Calls f(region, gates, limit) for each limit of `t`'s gates (region "") and of its regions'.
 template <typename T, typename F>

@@ -205,5 +205,50 @@ TEST_F(TolerancesSuggest, BadInputIsOneLineAndWritesNothing) {
   }
 }
 
+// Folder mode judges every image by one tolerance, so its suggestion is the folder-mode flags
+// of the loosest image's: they pass both runs, and one level or pixel less fails one of them.
+TEST_F(TolerancesSuggest, FolderModeRunsGetTheFlagsOfOneTolerance) {
+  fs::create_directories(dir_ / "expected" / "sub");
+  fs::create_directories(dir_ / "actual" / "sub");
+  write_png_rgba8(dir_ / "expected" / "one.png", chart({}));
+  write_png_rgba8(dir_ / "expected" / "sub" / "two.png", chart({}));
+  const std::string folders = "--actual actual --expected expected";
+  const std::string loose = " --max-mismatch 50 --max-channel-delta 64 --gate flip.max_mean=0.5";
+  // Run a: one.png off by 5 in one pixel; run b: two.png off by 3 and 7 in two.
+  write_png_rgba8(dir_ / "actual" / "one.png", chart({5}));
+  write_png_rgba8(dir_ / "actual" / "sub" / "two.png", chart({}));
+  ASSERT_EQ(aosuite("check " + folders + loose + " --report reports/a").rc, 0);
+  write_png_rgba8(dir_ / "actual" / "one.png", chart({}));
+  write_png_rgba8(dir_ / "actual" / "sub" / "two.png", chart({3, 7}));
+  ASSERT_EQ(aosuite("check " + folders + loose + " --report reports/b").rc, 0);
+
+  const test::Outcome r = aosuite("tolerances suggest --report reports/a --report reports/b");
+  ASSERT_EQ(r.rc, 0) << r.out << r.err;
+  // Resemble's default mode lets steps this small through (0 %); the largest step is run b's 7,
+  // and FLIP's mean the larger of the two images'.
+  const std::string flags = "--max-mismatch 0 --max-channel-delta 7 --gate flip.max_mean=0.0073";
+  const std::size_t at = r.out.find(flags);
+  ASSERT_NE(at, std::string::npos) << r.out;
+  const std::string line = r.out.substr(r.out.rfind("aosuite check ", at));
+  const std::string suggested = line.substr(14, line.find('\n') - 14);
+  EXPECT_FALSE(fs::exists(dir_ / "expected" / "tolerances.suggested.toml"));
+
+  // Both runs pass under the suggestion (run b is the folders as they are now) ...
+  EXPECT_EQ(aosuite("check " + suggested + " --report reports/c").rc, 0) << suggested;
+  write_png_rgba8(dir_ / "actual" / "one.png", chart({5}));
+  write_png_rgba8(dir_ / "actual" / "sub" / "two.png", chart({}));
+  EXPECT_EQ(aosuite("check " + suggested + " --report reports/d").rc, 0) << suggested;
+  // ... and a channel budget one level tighter fails run b.
+  write_png_rgba8(dir_ / "actual" / "sub" / "two.png", chart({3, 7}));
+  std::string tighter = suggested;
+  tighter.replace(tighter.find("--max-channel-delta 7"), 21, "--max-channel-delta 6");
+  EXPECT_EQ(aosuite("check " + tighter + " --report reports/e").rc, 1) << tighter;
+
+  // A suite's run is no folder-mode run, and folder mode writes nothing.
+  const test::Outcome bad = aosuite("tolerances suggest --report reports/a --out x.toml");
+  EXPECT_EQ(bad.rc, 2);
+  EXPECT_NE(bad.err.find("folder mode takes no --goldens or --out"), std::string::npos) << bad.err;
+}
+
 }  // namespace
 }  // namespace aosuite
