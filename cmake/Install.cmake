@@ -6,7 +6,7 @@ include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
 install(TARGETS aosuite RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
-set(AOSUITE_PLUGINS aosuite_check aosuite_exr aosuite_oiio)
+set(AOSUITE_PLUGINS aosuite_check aosuite_exr aosuite_codecs aosuite_oiio)
 if(AOSUITE_RENDERER)
   list(APPEND AOSUITE_PLUGINS aosuite_gl)
 endif()

@@ -3,7 +3,6 @@
 
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
-#include <webp/decode.h>
 
 #include <algorithm>
 #include <cctype>
@@ -26,7 +25,6 @@ std::string extension_from_signature(const unsigned char* b, std::size_t n, cons
   if (n >= 3 && b[0] == 0xFF && b[1] == 0xD8 && b[2] == 0xFF) return "jpg";
   if (starts("II*") || (n >= 4 && b[0] == 'M' && b[1] == 'M' && b[2] == 0 && b[3] == '*'))
     return "tif";
-  if (starts("RIFF") && starts("WEBP", 8)) return "webp";
   if (starts("#?RADIANCE") || starts("#?RGBE")) return "hdr";
   if (starts("BM")) return "bmp";
   if (starts("GIF8")) return "gif";
@@ -36,28 +34,6 @@ std::string extension_from_signature(const unsigned char* b, std::size_t n, cons
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return ext == ".tga" ? "tga" : "";
-}
-
-// WebP through libwebp itself: OpenImageIO 2.4's reader multiplies colour by alpha whatever it
-// is asked, and that cannot be undone exactly. RGBA, as a canvas holds it.
-int read_webp(const unsigned char* bytes, std::size_t size,
-              void* (*allocate)(void*, int, int, int, int), void* user, std::string& why) {
-  int width = 0, height = 0;
-  if (!WebPGetInfo(bytes, size, &width, &height)) {
-    why = "WebP: not a WebP image libwebp decodes";
-    return 1;
-  }
-  auto* pixels = static_cast<std::uint8_t*>(allocate(user, width, height, 4, 1));
-  if (!pixels) {
-    why = "refused";
-    return 1;
-  }
-  const std::size_t stride = std::size_t(width) * 4;
-  if (!WebPDecodeRGBAInto(bytes, size, pixels, stride * std::size_t(height), int(stride))) {
-    why = "WebP: libwebp could not decode it";
-    return 1;
-  }
-  return 0;
 }
 
 void say(char* out, std::size_t len, const std::string& text) {
@@ -81,13 +57,6 @@ extern "C" int aosuite_read_image(const unsigned char* bytes, std::size_t size, 
     }
     // The bytes, never the file: a pipe or FIFO has been read already, and what was checked is
     // what is decoded. The name only tells OpenImageIO which reader to use.
-    if (ext == "webp") {
-      say(format, format_len, "webp");
-      std::string why;
-      const int rc = read_webp(bytes, size, allocate, user, why);
-      say(err, err_len, why);
-      return rc;
-    }
     OIIO::Filesystem::IOMemReader memory(const_cast<unsigned char*>(bytes), size);
     // Colour samples as stored, never multiplied by alpha (what a PNG holds, and a canvas shows).
     OIIO::ImageSpec config;

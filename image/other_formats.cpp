@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstring>
 #include <map>
+#include <mutex>
 #include <vector>
 
 #include "common/file_io.hpp"
@@ -17,17 +18,23 @@ namespace {
 
 using ReadImage = decltype(aosuite_read_image);
 
-ReadImage* reader(const std::string& name) {
-  static const auto entry = [] {
-    std::pair<ReadImage*, std::string> e;
-    e.first = sibling_symbol<ReadImage>("libaosuite_oiio.so", "aosuite_read_image", e.second);
-    return e;
-  }();
-  if (!entry.first) {
+// The reader `library` exports, opened once; throws FileError naming `name` if it cannot be.
+ReadImage* reader(const char* library, const std::string& name) {
+  struct Entry {
+    ReadImage* read = nullptr;
+    std::string error;
+  };
+  static std::map<std::string, Entry> opened;  // images may be decoded on several threads
+  static std::mutex lock;
+  const std::lock_guard<std::mutex> held(lock);
+  auto [it, fresh] = opened.try_emplace(library);
+  if (fresh)
+    it->second.read = sibling_symbol<ReadImage>(library, "aosuite_read_image", it->second.error);
+  if (!it->second.read) {
     throw FileError(
-        fmt::format("{}: cannot read images other than PNG and EXR: {}", name, entry.second));
+        fmt::format("{}: cannot read images other than PNG and EXR: {}", name, it->second.error));
   }
-  return entry.first;
+  return it->second.read;
 }
 
 struct Decoded {
@@ -77,8 +84,15 @@ Picture decode_other_format(std::span<const unsigned char> bytes, const std::str
   Decoded d;
   d.max_bytes = max_bytes;
   char format[64] = {}, err[512] = {};
-  if (reader(name)(bytes.data(), bytes.size(), name.c_str(), &allocate, &d, format, sizeof format,
-                   err, sizeof err) != 0) {
+  // JPEG and WebP with their own libraries; the rest, and CMYK JPEGs, through OpenImageIO,
+  // which is then the only reason to load it.
+  int rc = 2;
+  for (const char* library : {"libaosuite_codecs.so", "libaosuite_oiio.so"}) {
+    if (rc != 2) break;
+    rc = reader(library, name)(bytes.data(), bytes.size(), name.c_str(), &allocate, &d, format,
+                               sizeof format, err, sizeof err);
+  }
+  if (rc != 0) {
     const std::string what = format[0] ? format_label(format) + ": " : std::string();
     throw FileError(printable(fmt::format("{}: {}{} (aosuite reads {})", name, what,
                                           d.refused.empty() ? err : d.refused, kImageFormats)));

@@ -1,5 +1,6 @@
-// Images in the formats aosuite does not decode itself (JPEG, TIFF, WebP, Radiance HDR, Targa,
-// BMP, ...), read through OpenImageIO in libaosuite_oiio.so, which is opened only then.
+// Images in the formats aosuite does not decode itself: JPEG and WebP through libjpeg-turbo and
+// libwebp in libaosuite_codecs.so, the rest (TIFF, Radiance HDR, Targa, BMP, ...) through
+// OpenImageIO in libaosuite_oiio.so; each library is opened only when such a file is read.
 #pragma once
 
 #include <cstdint>

@@ -162,16 +162,24 @@ def main():
                     or f"{bad}: " not in run.stderr or said not in run.stderr \
                     or "aosuite reads PNG, EXR, JPEG, TIFF" not in run.stderr:
                 failures.append(f"{bad}: exit {run.returncode}, {run.stderr!r}")
-        # 7. OpenImageIO is loaded for other formats only: a PNG comparison maps none of it.
+        # 7. Each decoder library is loaded for its formats only: a PNG comparison maps neither,
+        # a JPEG one (and WebP) libaosuite_codecs.so alone, with no OpenImageIO and so no OpenCV
+        # (Debian's OpenImageIO links it), a TIFF one OpenImageIO.
         png_a, png_b = made[0][1], made[1][1]
-        for pair, wanted in (((png_a, png_b), False), ((made[0][0], png_b), True)):
+        jpeg = next(f for f, _ in made if f.suffix == ".jpg")
+        webp = next(f for f, _ in made if f.suffix == ".webp")
+        tiff = next(f for f, _ in made if f.suffix == ".tif")
+        for pair, codecs, oiio in (((png_a, png_b), False, False), ((jpeg, png_b), True, False),
+                                   ((webp, png_b), True, False), ((tiff, png_b), True, True)):
             run = subprocess.run([binary, "compare", str(pair[0]), str(pair[1])],
                                  env={"LD_DEBUG": "files", "PATH": "/usr/bin:/bin"},
                                  capture_output=True, text=True, check=False)
-            loaded = "libaosuite_oiio.so" in run.stderr and "libOpenImageIO" in run.stderr
-            if loaded != wanted or ("libOpenImageIO" in run.stderr) != wanted:
-                failures.append(f"compare {pair[0].name} {pair[1].name}: OpenImageIO loaded: "
-                                f"{loaded}, expected {wanted}")
+            seen = ("libaosuite_codecs.so" in run.stderr,
+                    "libaosuite_oiio.so" in run.stderr and "libOpenImageIO" in run.stderr,
+                    "libopencv" in run.stderr)
+            if seen != (codecs, oiio, oiio):
+                failures.append(f"compare {pair[0].name} {pair[1].name}: loaded (codecs, "
+                                f"OpenImageIO, OpenCV) {seen}, expected {(codecs, oiio, oiio)}")
         print(f"pillow_formats: {len(made)} files, {len(pairs)} Resemble pairs, "
               f"{len(mismatch)} folder-mode pairs, a float TIFF and an HDR pair; "
               f"{len(failures)} failures")

@@ -1,0 +1,135 @@
+// libaosuite_codecs.so: JPEG through libjpeg-turbo and WebP through libwebp, the formats
+// renderers and browsers write most after PNG, each read with its own library rather than
+// OpenImageIO, whose Debian build maps OpenCV, FFmpeg, DCMTK and OpenVDB into the process
+// (about 350 ms of start-up). Same entry point as libaosuite_oiio.so (image/image_library.hpp);
+// returns 2 for a file it leaves to that library (no JPEG or WebP signature, a CMYK JPEG).
+
+// jpeglib.h uses size_t and FILE without declaring them: their C headers come first.
+// clang-format off
+#include <stddef.h>
+#include <stdio.h>
+#include <jpeglib.h>
+// clang-format on
+#include <webp/decode.h>
+
+#include <algorithm>
+#include <csetjmp>
+#include <cstddef>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <string>
+
+#include "image/image_library.hpp"
+
+namespace {
+
+constexpr int kNotMine = 2;
+
+using Allocate = void* (*)(void*, int, int, int, int);
+
+// WebP as RGBA, as a canvas holds it (OpenImageIO 2.4 multiplies colour by alpha whatever it
+// is asked, which cannot be undone exactly).
+int read_webp(const unsigned char* bytes, std::size_t size, Allocate allocate, void* user,
+              std::string& why) {
+  int width = 0, height = 0;
+  if (!WebPGetInfo(bytes, size, &width, &height)) {
+    why = "not a WebP image libwebp decodes";
+    return 1;
+  }
+  auto* pixels = static_cast<std::uint8_t*>(allocate(user, width, height, 4, 1));
+  if (!pixels) {
+    why = "refused";
+    return 1;
+  }
+  const std::size_t stride = std::size_t(width) * 4;
+  if (!WebPDecodeRGBAInto(bytes, size, pixels, stride * std::size_t(height), int(stride))) {
+    why = "libwebp could not decode it";
+    return 1;
+  }
+  return 0;
+}
+
+// libjpeg reports a fatal error by calling error_exit, which must not return: it jumps back
+// to read_jpeg with the message.
+struct JpegError {
+  jpeg_error_mgr mgr;
+  std::jmp_buf back;
+  char message[JMSG_LENGTH_MAX];
+};
+
+[[noreturn]] void jpeg_fail(j_common_ptr cinfo) {
+  auto* e = reinterpret_cast<JpegError*>(cinfo->err);
+  e->mgr.format_message(cinfo, e->message);
+  std::longjmp(e->back, 1);
+}
+
+void jpeg_quiet(j_common_ptr, int) {}  // warnings (a truncated file still decodes) unprinted
+
+// Grey as one channel, colour as RGB, with libjpeg's defaults (the accurate integer IDCT and
+// fancy upsampling), as Pillow and OpenImageIO decode. CMYK and YCCK go to OpenImageIO.
+// Only plain locals live across the setjmp, so longjmp skips no destructor.
+int read_jpeg(const unsigned char* bytes, std::size_t size, Allocate allocate, void* user,
+              std::string& why) {
+  jpeg_decompress_struct cinfo;
+  JpegError err;
+  cinfo.err = jpeg_std_error(&err.mgr);
+  err.mgr.error_exit = jpeg_fail;
+  err.mgr.emit_message = jpeg_quiet;
+  err.message[0] = 0;
+  if (setjmp(err.back)) {
+    jpeg_destroy_decompress(&cinfo);
+    why = err.message;
+    return 1;
+  }
+  jpeg_create_decompress(&cinfo);
+  jpeg_mem_src(&cinfo, bytes, static_cast<unsigned long>(size));
+  jpeg_read_header(&cinfo, TRUE);
+  if (cinfo.jpeg_color_space == JCS_CMYK || cinfo.jpeg_color_space == JCS_YCCK) {
+    jpeg_destroy_decompress(&cinfo);
+    return kNotMine;
+  }
+  const bool grey = cinfo.jpeg_color_space == JCS_GRAYSCALE;
+  cinfo.out_color_space = grey ? JCS_GRAYSCALE : JCS_RGB;
+  jpeg_start_decompress(&cinfo);
+  const int channels = grey ? 1 : 3;
+  auto* pixels = static_cast<unsigned char*>(
+      allocate(user, int(cinfo.output_width), int(cinfo.output_height), channels, 1));
+  if (!pixels) {
+    jpeg_destroy_decompress(&cinfo);
+    why = "refused";
+    return 1;
+  }
+  const std::size_t stride = std::size_t(cinfo.output_width) * std::size_t(channels);
+  while (cinfo.output_scanline < cinfo.output_height) {
+    JSAMPROW row = pixels + std::size_t(cinfo.output_scanline) * stride;
+    jpeg_read_scanlines(&cinfo, &row, 1);
+  }
+  jpeg_finish_decompress(&cinfo);
+  jpeg_destroy_decompress(&cinfo);
+  return 0;
+}
+
+void say(char* out, std::size_t len, const std::string& text) {
+  if (len == 0) return;
+  std::string line = text;
+  std::replace(line.begin(), line.end(), '\n', ' ');
+  std::snprintf(out, len, "%s", line.c_str());
+}
+
+}  // namespace
+
+extern "C" int aosuite_read_image(const unsigned char* bytes, std::size_t size, const char*,
+                                  Allocate allocate, void* user, char* format,
+                                  std::size_t format_len, char* err, std::size_t err_len) {
+  const bool jpeg = size >= 3 && bytes[0] == 0xFF && bytes[1] == 0xD8 && bytes[2] == 0xFF;
+  const bool webp =
+      size >= 12 && std::memcmp(bytes, "RIFF", 4) == 0 && std::memcmp(bytes + 8, "WEBP", 4) == 0;
+  if (!jpeg && !webp) return kNotMine;
+  say(format, format_len, jpeg ? "jpeg" : "webp");
+  std::string why;
+  const int rc = jpeg ? read_jpeg(bytes, size, allocate, user, why)
+                      : read_webp(bytes, size, allocate, user, why);
+  say(err, err_len, why);
+  return rc;
+}
