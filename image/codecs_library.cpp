@@ -110,14 +110,9 @@ int read_jpeg(const unsigned char* bytes, std::size_t size, Allocate allocate, v
   return 0;
 }
 
-void say(char* out, std::size_t len, const std::string& text) {
-  if (len == 0) return;
-  std::string line = text;
-  std::replace(line.begin(), line.end(), '\n', ' ');
-  std::snprintf(out, len, "%s", line.c_str());
-}
-
 }  // namespace
+
+using aosuite::say;
 
 extern "C" int aosuite_read_image(const unsigned char* bytes, std::size_t size, const char*,
                                   Allocate allocate, void* user, char* format,

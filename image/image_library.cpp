@@ -36,14 +36,9 @@ std::string extension_from_signature(const unsigned char* b, std::size_t n, cons
   return ext == ".tga" ? "tga" : "";
 }
 
-void say(char* out, std::size_t len, const std::string& text) {
-  if (len == 0) return;
-  std::string line = text;
-  std::replace(line.begin(), line.end(), '\n', ' ');
-  std::snprintf(out, len, "%s", line.c_str());
-}
-
 }  // namespace
+
+using aosuite::say;
 
 extern "C" int aosuite_read_image(const unsigned char* bytes, std::size_t size, const char* name,
                                   void* (*allocate)(void*, int, int, int, int), void* user,

@@ -5,7 +5,10 @@
 // neither, so a PNG comparison never pays OpenImageIO's start-up.
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
+#include <cstdio>
+#include <string>
 
 extern "C" {
 
@@ -24,3 +27,15 @@ int aosuite_read_image(const unsigned char* bytes, std::size_t size, const char*
                        void* user, char* format, std::size_t format_len, char* err,
                        std::size_t err_len);
 }
+
+namespace aosuite {
+
+// `text` on one line into a C buffer of `len` bytes (cut to fit): how the libraries fill
+// `format` and `err` above.
+inline void say(char* out, std::size_t len, std::string text) {
+  if (len == 0) return;
+  std::replace(text.begin(), text.end(), '\n', ' ');
+  std::snprintf(out, len, "%s", text.c_str());
+}
+
+}  // namespace aosuite
