@@ -71,7 +71,7 @@ bool is_preset_file(std::string_view arg) {
 std::vector<std::string> builtin_preset_names() {
   std::vector<std::string> names;
   for (const auto& [file, text] : embedded_presets()) {
-    std::string name(file.substr(0, file.find('-')));
+    std::string name(file.substr(0, file.rfind('-')));  // NAME-TECHNIQUE.toml
     if (std::ranges::find(names, name) == names.end()) names.push_back(name);
   }
   return names;

@@ -45,7 +45,11 @@ class Measurements {
     if (file_.empty() || !fs::exists(file_)) return;
     const std::vector<unsigned char> bytes = read_file(file_);
     const nlohmann::json j = nlohmann::json::parse(bytes.begin(), bytes.end(), nullptr, false);
-    if (j.is_discarded() || !j.is_object() || !j.contains("settings") || !j.contains("errors"))
+    const auto objects = [](const nlohmann::json& e) {
+      return e.is_object() && std::ranges::all_of(e, [](const auto& v) { return v.is_object(); });
+    };
+    if (j.is_discarded() || !j.is_object() || !j.contains("settings") || !j.contains("errors") ||
+        !objects(j["errors"]))
       throw FileError(fmt::format("{}: not a tune state file", file_.string()));
     if (j["settings"] != header_) {
       throw FileError(
@@ -146,7 +150,8 @@ class Evaluator {
       gs.outputs = rd::Outputs{false, false, false, false};
       gs.outputs.normal = true;
       const rd::Images g = renderer_.render(scene, view, gs);
-      if (g.geometry_pixels == 0) {
+      cv::Mat mask = ref::geometry_mask(g.depth, 8);
+      if (cv::countNonZero(mask) == 0) {  // nothing drawn, or only within the border
         empty_views_.push_back(scene.name + "/" + view.name);
         continue;
       }
@@ -156,8 +161,7 @@ class Evaluator {
         items_.push_back(
             {&scene, &view, index, r, radius,
              fmt::format("{}/{}/{}", scene.name, view.name, radius),
-             cache.get(camera, g.depth, g.normal, {s_.rays, radius, ref::Variant::kAo}),
-             ref::geometry_mask(g.depth, 8)});
+             cache.get(camera, g.depth, g.normal, {s_.rays, radius, ref::Variant::kAo}), mask});
       }
     }
   }
@@ -198,17 +202,26 @@ TuneResult run_tune(const TuneSettings& s, const std::function<void(const TunePr
 
   // One search on the items `take` accepts, reporting as `stage`; saves after each trial.
   auto searched = [&](const std::string& stage, auto take) {
-    return search(
+    const SearchResult r = search(
         space, out.defaults, s.search, [&](const rd::AoParams& p) { return ev.mean(p, take); },
         [&](int trial, double best) {
           m.save();
-          if (on) on({stage, trial, s.search.trials, best});
+          if (on) on({stage, trial, s.search.trials, best, false});
         });
+    if (on) on({stage, r.trials, s.search.trials, r.error, true});
+    return r;
   };
-  const std::size_t n = ev.scenes().size();
-  for (std::size_t f = 0; n >= 2 && f < n; ++f) {
+  // A fold per scene with something to measure (a scene whose every view is empty has none).
+  std::vector<std::size_t> measured;
+  for (std::size_t i = 0; i < ev.scenes().size(); ++i) {
+    if (std::ranges::any_of(ev.items(), [i](const Item& it) { return it.scene_index == i; }))
+      measured.push_back(i);
+  }
+  const std::size_t n = measured.size();
+  for (std::size_t fold_index = 0; n >= 2 && fold_index < n; ++fold_index) {
+    const std::size_t f = measured[fold_index], shown = fold_index + 1;
     const std::string name = ev.scenes()[f].name;
-    const SearchResult r = searched(fmt::format("fold {}/{} (held out: {})", f + 1, n, name),
+    const SearchResult r = searched(fmt::format("fold {}/{} (held out: {})", shown, n, name),
                                     [f](const Item& i) { return i.scene_index != f; });
     Fold fold{name, {}, {}, space.key(r.best)};
     for (std::size_t k = 0; k < s.radii.size(); ++k) {

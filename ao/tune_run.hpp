@@ -51,6 +51,7 @@ struct TuneProgress {
   std::string stage;  // "fold 2/6 (held out: village)" or "all scenes"
   int trial = 0, trials = 0;
   double best = 0;
+  bool done = false;  // the stage's last report (a search may end before its trials)
 };
 
 // Throws std::invalid_argument for a bad setting (no scene, a technique with nothing to search)

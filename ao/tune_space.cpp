@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <stdexcept>
 
@@ -13,8 +14,14 @@ namespace {
 
 namespace rd = aosuite::renderer;
 
-// Three significant digits: a preset reads back as the value that was measured.
-float round3(double v) { return v == 0 ? 0.0f : std::stof(fmt::format("{:.3g}", v)); }
+// Three significant digits: a preset reads back as the value that was measured (parsed as
+// set_param parses it, with from_chars: no locale).
+float round3(double v) {
+  const std::string text = fmt::format("{:.3g}", v);
+  float out = 0;
+  std::from_chars(text.data(), text.data() + text.size(), out);
+  return out;
+}
 
 double to_value(const rd::SearchRange& r, double u) {
   u = std::clamp(u, 0.0, 1.0);

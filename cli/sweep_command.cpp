@@ -10,6 +10,7 @@
 #include <string>
 #include <utility>
 
+#include "ao/preset.hpp"
 #include "ao/sweep_merge.hpp"
 #include "ao/sweep_report.hpp"
 #include "ao/sweep_run.hpp"
@@ -59,7 +60,10 @@ struct SweepArgs {
 };
 
 int run_sweep(const SweepArgs& a) {
-  ao::SweepGrid g = ao::read_sweep_grid(a.grid, a.preset);
+  // A preset file on the command line is the current directory's, not the grid's.
+  const std::string preset =
+      ao::is_preset_file(a.preset) ? std::filesystem::absolute(a.preset).string() : a.preset;
+  ao::SweepGrid g = ao::read_sweep_grid(a.grid, preset);
   if (!a.scenes.empty()) g.scenes = a.scenes;
   if (!a.resolutions.empty()) {
     g.resolutions.clear();

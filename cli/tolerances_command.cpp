@@ -64,7 +64,7 @@ int run_suggest(const SuggestArgs& a) {
   const bool folders = a.suite.empty();
   if (folders && (!a.goldens.empty() || !a.out.empty()))
     throw std::invalid_argument("folder mode takes no --goldens or --out: its flags are printed");
-  hs::Suite suite = folders ? hs::folder_suite_of(reports.front()) : hs::load_suite(a.suite);
+  hs::Suite suite = folders ? hs::folder_suite_of(reports) : hs::load_suite(a.suite);
   if (!a.goldens.empty()) suite.goldens = a.goldens, suite.goldens_given = true;
   const hs::SuggestOptions options{.margin_percent = a.margin};
   const std::vector<hs::Suggestion> all = hs::suggest(suite, reports, options);

@@ -124,9 +124,9 @@ int run_tune(TuneArgs& a) {
   const bool tty = isatty(fileno(stderr));
   const ao::TuneResult r = ao::run_tune(a.s, [&](const ao::TuneProgress& p) {
     // One line per stage on a pipe; the running best in place on a terminal.
-    if (tty || p.trial == p.trials)
+    if (tty || p.done)
       fmt::print(stderr, "{}{}: trial {}/{}, best AO RMSE {:.5f}{}", tty ? "\r" : "", p.stage,
-                 p.trial, p.trials, p.best, tty && p.trial < p.trials ? "" : "\n");
+                 p.trial, p.trials, p.best, p.done ? "\n" : "");
   });
   const ao::TuneSpace space(a.s.technique);
   ao::Preset preset{a.out, a.s.technique, space.entries(r.tuned)};

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <optional>
 #include <stdexcept>
 
@@ -158,9 +159,9 @@ std::string observe(const Suite& suite, const Case& c, const Run& run, const Cas
     if (v->golden_hash.empty()) return at + "made by an older aosuite (check again)";
     if (!v->comparable)
       return at + image + ": " + printable(v->message) + " (no tolerance passes it)";
-    // Folder mode's goldens stay where the run found them: --expected, by relative path.
+    // Folder mode's golden is the expected folder's file (absolute: folder_suite_of).
     const fs::path now =
-        suite.expected.empty() ? golden_now(suite.goldens, c.id, v->golden) : fs::path(v->golden);
+        suite.expected.empty() ? golden_now(suite.goldens, c.id, v->golden) : c.source->golden_file;
     if (!golden_unchanged(now, v->golden_hash)) {
       return at + image + ": the golden " + printable(now.string()) +
              " changed since (check again)";
@@ -267,21 +268,32 @@ std::vector<Suggestion> suggest(const Suite& suite, const std::vector<fs::path>&
   return out;
 }
 
-Suite folder_suite_of(const fs::path& report) {
-  const RunResults r = read_results(report);
-  if (r.expected_folder.empty()) {
-    throw std::runtime_error(printable((report / "results.json").string()) + ": a run of suite '" +
-                             r.suite + "'; name its suite file");
+Suite folder_suite_of(const std::vector<fs::path>& reports) {
+  std::vector<RunResults> runs;
+  for (const fs::path& report : reports) runs.push_back(read_results(report));
+  const RunResults& first = runs.front();
+  if (first.expected_folder.empty()) {
+    throw std::runtime_error(printable((reports.front() / "results.json").string()) +
+                             ": a run of suite '" + first.suite + "'; name its suite file");
   }
-  Suite suite = folder_suite(r.suite_file, r.expected_folder, Tolerance{});
+  Suite suite = folder_suite(first.suite_file, first.expected_folder, Tolerance{});
+  // Each image under the tolerance a run judged it by (a filtered run may have left it out).
   for (Case& c : suite.cases) {
-    const auto judged = std::ranges::find(r.cases, c.id, &CaseResult::id);
-    if (judged != r.cases.end()) c.tolerance = judged->tolerance;
+    for (const RunResults& r : runs) {
+      const auto judged = std::ranges::find(r.cases, c.id, &CaseResult::id);
+      if (judged == r.cases.end()) continue;
+      c.tolerance = judged->tolerance;
+      break;
+    }
   }
   return suite;
 }
 
 std::optional<Tolerance> loosest(const std::vector<Suggestion>& suggestions) {
+  // A limit's identity, to match the same limit across images: region, metric, side, stat.
+  const auto key = [](std::string_view region, const metric::Gates& g, const metric::Limit& l) {
+    return fmt::format("{}/{}/{}_{}", region, g.metric->name, l.is_max ? "max" : "min", l.stat);
+  };
   std::optional<Tolerance> out;
   for (const Suggestion& s : suggestions) {
     if (!s.reason.empty()) continue;
@@ -293,14 +305,15 @@ std::optional<Tolerance> loosest(const std::vector<Suggestion>& suggestions) {
     out->max_mismatch_percent =
         std::max(out->max_mismatch_percent, s.proposed.max_mismatch_percent);
     out->max_channel_delta = std::max(out->max_channel_delta, s.proposed.max_channel_delta);
-    std::vector<double> limits;
-    for_each_limit(s.proposed, [&](auto, auto&, auto& l) { limits.push_back(l.limit); });
-    std::size_t i = 0;
-    // Folder mode judges every image under one tolerance, so their gates line up.
-    for_each_limit(*out, [&](auto, auto&, metric::Limit& l) {
-      if (i < limits.size())
-        l.limit = l.is_max ? std::max(l.limit, limits[i]) : std::min(l.limit, limits[i]);
-      ++i;
+    std::map<std::string, double> limits;
+    for_each_limit(s.proposed,
+                   [&](std::string_view region, const metric::Gates& g, const metric::Limit& l) {
+                     limits[key(region, g, l)] = l.limit;
+                   });
+    for_each_limit(*out, [&](std::string_view region, const metric::Gates& g, metric::Limit& l) {
+      const auto it = limits.find(key(region, g, l));
+      if (it != limits.end())
+        l.limit = l.is_max ? std::max(l.limit, it->second) : std::min(l.limit, it->second);
     });
   }
   return out;

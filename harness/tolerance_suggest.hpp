@@ -41,10 +41,10 @@ std::vector<Suggestion> suggest(const Suite& suite,
                                 const std::vector<std::filesystem::path>& reports,
                                 const SuggestOptions& options);
 
-// Folder mode: the suite `check --actual A --expected E` made for the folders `report` (a
-// folder-mode run's report) compared, each image under the tolerance that run judged it by.
+// Folder mode: the suite `check --actual A --expected E` made for the folders the first of
+// `reports` (folder-mode runs) compared, each image under the tolerance a run judged it by.
 // Throws std::runtime_error naming the results.json when it is a suite's run or unreadable.
-Suite folder_suite_of(const std::filesystem::path& report);
+Suite folder_suite_of(const std::vector<std::filesystem::path>& reports);
 
 // Folder mode has one tolerance for every image: the loosest of the suggestions made (each
 // max limit the largest, each min limit the smallest); nothing when none was made.

@@ -18,8 +18,8 @@ namespace {
 
 using ReadImage = decltype(aosuite_read_image);
 
-// The reader `library` exports, opened once; throws FileError naming `name` if it cannot be.
-ReadImage* reader(const char* library, const std::string& name) {
+// The reader `library` exports, opened once; nullptr with `why` when it cannot be.
+ReadImage* reader(const char* library, std::string& why) {
   struct Entry {
     ReadImage* read = nullptr;
     std::string error;
@@ -30,10 +30,7 @@ ReadImage* reader(const char* library, const std::string& name) {
   auto [it, fresh] = opened.try_emplace(library);
   if (fresh)
     it->second.read = sibling_symbol<ReadImage>(library, "aosuite_read_image", it->second.error);
-  if (!it->second.read) {
-    throw FileError(
-        fmt::format("{}: cannot read images other than PNG and EXR: {}", name, it->second.error));
-  }
+  why = it->second.error;
   return it->second.read;
 }
 
@@ -86,11 +83,22 @@ Picture decode_other_format(std::span<const unsigned char> bytes, const std::str
   char format[64] = {}, err[512] = {};
   // JPEG and WebP with their own libraries; the rest, and CMYK JPEGs, through OpenImageIO,
   // which is then the only reason to load it.
+  // A library that cannot be opened leaves the file to the next one, as 2 does.
   int rc = 2;
+  std::string unopened;
   for (const char* library : {"libaosuite_codecs.so", "libaosuite_oiio.so"}) {
     if (rc != 2) break;
-    rc = reader(library, name)(bytes.data(), bytes.size(), name.c_str(), &allocate, &d, format,
-                               sizeof format, err, sizeof err);
+    std::string why;
+    if (ReadImage* read = reader(library, why)) {
+      rc = read(bytes.data(), bytes.size(), name.c_str(), &allocate, &d, format, sizeof format,
+                err, sizeof err);
+    } else {
+      unopened = why;
+    }
+  }
+  if (rc == 2) {
+    throw FileError(
+        fmt::format("{}: cannot read images other than PNG and EXR: {}", name, unopened));
   }
   if (rc != 0) {
     const std::string what = format[0] ? format_label(format) + ": " : std::string();

@@ -232,6 +232,14 @@ TEST_F(TolerancesSuggest, FolderModeRunsGetTheFlagsOfOneTolerance) {
   const std::string line = r.out.substr(r.out.rfind("aosuite check ", at));
   const std::string suggested = line.substr(14, line.find('\n') - 14);
   EXPECT_FALSE(fs::exists(dir_ / "expected" / "tolerances.suggested.toml"));
+  // The same from another directory: the runs named the folders relative to theirs.
+  fs::create_directories(dir_ / "elsewhere");
+  const test::Outcome there =
+      test::run_shell("cd " + (dir_ / "elsewhere").string() + " && " + AOSUITE_BIN +
+                          " tolerances suggest --report ../reports/a --report ../reports/b",
+                      dir_.path());
+  EXPECT_EQ(there.rc, 0) << there.out << there.err;
+  EXPECT_NE(there.out.find(flags), std::string::npos) << there.out;
 
   // Both runs pass under the suggestion (run b is the folders as they are now) ...
   EXPECT_EQ(aosuite("check " + suggested + " --report reports/c").rc, 0) << suggested;
