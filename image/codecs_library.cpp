@@ -1,8 +1,9 @@
-// libaosuite_codecs.so: JPEG through libjpeg-turbo and WebP through libwebp, the formats
-// renderers and browsers write most after PNG, each read with its own library rather than
-// OpenImageIO, whose Debian build maps OpenCV, FFmpeg, DCMTK and OpenVDB into the process
+// libaosuite_codecs.so: JPEG (libjpeg-turbo), WebP (libwebp), TIFF (libtiff) and Radiance HDR,
+// the formats renderers write most after PNG and EXR, each read with its own library rather
+// than OpenImageIO, whose Debian build maps OpenCV, FFmpeg, DCMTK and OpenVDB into the process
 // (about 350 ms of start-up). Same entry point as libaosuite_oiio.so (image/image_library.hpp);
-// returns 2 for a file it leaves to that library (no JPEG or WebP signature, a CMYK JPEG).
+// returns 2 for a file it leaves to that library (another format, or a variant such as a CMYK
+// JPEG or a tiled TIFF). The JPEG and WebP decoders are here, TIFF and HDR in codec_*.cpp.
 
 // jpeglib.h uses size_t and FILE without declaring them: their C headers come first.
 // clang-format off
@@ -20,13 +21,10 @@
 #include <cstring>
 #include <string>
 
+#include "image/codecs.hpp"
 #include "image/image_library.hpp"
 
-namespace {
-
-constexpr int kNotMine = 2;
-
-using Allocate = void* (*)(void*, int, int, int, int);
+namespace aosuite::codecs {
 
 // WebP as RGBA, as a canvas holds it (OpenImageIO 2.4 multiplies colour by alpha whatever it
 // is asked, which cannot be undone exactly).
@@ -50,6 +48,8 @@ int read_webp(const unsigned char* bytes, std::size_t size, Allocate allocate, v
   return 0;
 }
 
+namespace {
+
 // libjpeg reports a fatal error by calling error_exit, which must not return: it jumps back
 // to read_jpeg with the message.
 struct JpegError {
@@ -65,6 +65,8 @@ struct JpegError {
 }
 
 void jpeg_quiet(j_common_ptr, int) {}  // warnings (a truncated file still decodes) unprinted
+
+}  // namespace
 
 // Grey as one channel, colour as RGB, with libjpeg's defaults (the accurate integer IDCT and
 // fancy upsampling), as Pillow and OpenImageIO decode. CMYK and YCCK go to OpenImageIO.
@@ -110,21 +112,38 @@ int read_jpeg(const unsigned char* bytes, std::size_t size, Allocate allocate, v
   return 0;
 }
 
-}  // namespace
+namespace {
 
-using aosuite::say;
+// The decoder for the bytes' signature, or none.
+using Decoder = int (*)(const unsigned char*, std::size_t, Allocate, void*, std::string&);
+Decoder decoder_for(const unsigned char* b, std::size_t n, const char*& format) {
+  const auto starts = [&](const char* magic, std::size_t at = 0) {
+    const std::size_t len = std::strlen(magic);
+    return n >= at + len && std::memcmp(b + at, magic, len) == 0;
+  };
+  if (n >= 3 && b[0] == 0xFF && b[1] == 0xD8 && b[2] == 0xFF) return format = "jpeg", read_jpeg;
+  if (starts("RIFF") && starts("WEBP", 8)) return format = "webp", read_webp;
+  if (n >= 4 && ((b[0] == 'I' && b[1] == 'I' && b[2] == 42 && b[3] == 0) ||
+                 (b[0] == 'M' && b[1] == 'M' && b[2] == 0 && b[3] == 42)))
+    return format = "tiff", read_tiff;
+  if (starts("#?RADIANCE") || starts("#?RGBE")) return format = "hdr", read_hdr;
+  return nullptr;
+}
+
+}  // namespace
+}  // namespace aosuite::codecs
 
 extern "C" int aosuite_read_image(const unsigned char* bytes, std::size_t size, const char*,
-                                  Allocate allocate, void* user, char* format,
+                                  aosuite::codecs::Allocate allocate, void* user, char* format,
                                   std::size_t format_len, char* err, std::size_t err_len) {
-  const bool jpeg = size >= 3 && bytes[0] == 0xFF && bytes[1] == 0xD8 && bytes[2] == 0xFF;
-  const bool webp =
-      size >= 12 && std::memcmp(bytes, "RIFF", 4) == 0 && std::memcmp(bytes + 8, "WEBP", 4) == 0;
-  if (!jpeg && !webp) return kNotMine;
-  say(format, format_len, jpeg ? "jpeg" : "webp");
+  namespace cd = aosuite::codecs;
+  const char* name = "";
+  const cd::Decoder decode = cd::decoder_for(bytes, size, name);
+  if (!decode) return cd::kNotMine;
   std::string why;
-  const int rc = jpeg ? read_jpeg(bytes, size, allocate, user, why)
-                      : read_webp(bytes, size, allocate, user, why);
-  say(err, err_len, why);
+  const int rc = decode(bytes, size, allocate, user, why);
+  if (rc == cd::kNotMine) return rc;
+  aosuite::say(format, format_len, name);
+  aosuite::say(err, err_len, why);
   return rc;
 }

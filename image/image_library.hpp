@@ -1,6 +1,7 @@
 // The C entry point of the libraries that read image formats beyond PNG and EXR, which aosuite
-// decodes itself: libaosuite_codecs.so (image/codecs_library.cpp: JPEG and WebP with their own
-// libraries) and libaosuite_oiio.so (image/image_library.cpp: the rest, through OpenImageIO). Only
+// decodes itself: libaosuite_codecs.so (image/codecs_library.cpp: JPEG, WebP, TIFF and HDR with
+// their own libraries) and libaosuite_oiio.so (image/image_library.cpp: the rest, through
+// OpenImageIO). Only
 // C types cross the boundary: image/other_formats.cpp opens the library only when a file is
 // neither, so a PNG comparison never pays OpenImageIO's start-up.
 #pragma once
@@ -19,8 +20,8 @@ extern "C" {
 // samples, or nullptr to refuse the size. `format` receives OpenImageIO's format name ("jpeg",
 // "tiff", "webp", "hdr", "targa", "bmp", ...). 0 on success; else 1 with a one-line reason in err
 // (a refusal by the allocator says only "refused": the allocator keeps its own reason), or 2
-// when the file is one the library leaves to another (libaosuite_codecs.so: neither JPEG nor
-// WebP, or a CMYK JPEG).
+// when the file is one the library leaves to another (libaosuite_codecs.so: another format, or
+// a variant such as a CMYK JPEG or a tiled TIFF).
 int aosuite_read_image(const unsigned char* bytes, std::size_t size, const char* name,
                        void* (*allocate)(void* user, int width, int height, int channels,
                                          int sample),

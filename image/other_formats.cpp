@@ -81,17 +81,17 @@ Picture decode_other_format(std::span<const unsigned char> bytes, const std::str
   Decoded d;
   d.max_bytes = max_bytes;
   char format[64] = {}, err[512] = {};
-  // JPEG and WebP with their own libraries; the rest, and CMYK JPEGs, through OpenImageIO,
-  // which is then the only reason to load it.
-  // A library that cannot be opened leaves the file to the next one, as 2 does.
+  // JPEG, WebP, TIFF and HDR with their own libraries; the rest (and rare variants) through
+  // OpenImageIO, which is then the only reason to load it. A library that cannot be opened
+  // leaves the file to the next one, as 2 does.
   int rc = 2;
   std::string unopened;
   for (const char* library : {"libaosuite_codecs.so", "libaosuite_oiio.so"}) {
     if (rc != 2) break;
     std::string why;
     if (ReadImage* read = reader(library, why)) {
-      rc = read(bytes.data(), bytes.size(), name.c_str(), &allocate, &d, format, sizeof format,
-                err, sizeof err);
+      rc = read(bytes.data(), bytes.size(), name.c_str(), &allocate, &d, format, sizeof format, err,
+                sizeof err);
     } else {
       unopened = why;
     }

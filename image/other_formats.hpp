@@ -1,5 +1,5 @@
-// Images in the formats aosuite does not decode itself: JPEG and WebP through libjpeg-turbo and
-// libwebp in libaosuite_codecs.so, the rest (TIFF, Radiance HDR, Targa, BMP, ...) through
+// Images in the formats aosuite does not decode itself: JPEG, WebP, TIFF and Radiance HDR with
+// their own libraries in libaosuite_codecs.so, the rest (Targa, BMP, rarer variants) through
 // OpenImageIO in libaosuite_oiio.so; each library is opened only when such a file is read.
 #pragma once
 

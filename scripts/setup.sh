@@ -13,7 +13,7 @@ PACKAGES=(
   libspng-dev libisal-dev libopencv-core-dev libfmt-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev libbenchmark-dev
   libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri libglm-dev libopenimageio-dev libopenexr-dev
-  libtomlplusplus-dev libassimp-dev libxxhash-dev libembree-dev libwebp-dev
+  libtomlplusplus-dev libassimp-dev libxxhash-dev libembree-dev libwebp-dev libjpeg-dev libtiff-dev
   chromium
   # clang and libFuzzer's runtime: the fuzz targets (fuzz/run.sh, the fuzz_smoke test).
   clang libclang-rt-dev

@@ -71,6 +71,30 @@ def cases(rng, out):
     return made
 
 
+def rle_scanline(row):
+    """One RGBE scanline in Radiance's new run-length encoding: 2, 2, the width, then each
+    channel as runs (128 + n, value) of 3 to 127 equal bytes and literals (n, bytes) of up to
+    128."""
+    out = bytearray([2, 2, len(row) >> 8, len(row) & 255])
+    for c in range(4):
+        data, i = row[:, c].tolist(), 0
+        while i < len(data):
+            run = 1
+            while i + run < len(data) and run < 127 and data[i + run] == data[i]:
+                run += 1
+            if run >= 3:
+                out += bytes([128 + run, data[i]])
+                i += run
+                continue
+            j = i
+            while j < len(data) and j - i < 128 and not (
+                    j + 2 < len(data) and data[j] == data[j + 1] == data[j + 2]):
+                j += 1
+            out += bytes([j - i]) + bytes(data[i:j])
+            i = j
+    return bytes(out)
+
+
 def batch(binary, pairs, *options):
     lines = "".join(f"{a}\t{b}\n" for a, b in pairs)
     run = subprocess.run([binary, "compare", "--batch", "-", *options], input=lines,
@@ -128,6 +152,29 @@ def main():
         got = batch(binary, [(hdr[0][0], hdr[1][0])], "--metric", "rmse")[0]
         if abs(got.get("rmse", {}).get("value", -1) - want) > 1e-6 * max(1.0, want):
             failures.append(f"Radiance HDR RMSE {got} != {want}")
+        # Wider scanlines, run-length encoded as rgbe.c writes them (runs and literals per
+        # channel), are the same pixels as the flat file: RMSE 0 between them and numpy's RMSE
+        # against another.
+        rgbe = rng.integers(0, 256, (5, 40, 4), dtype=np.uint8)
+        rgbe[:, :, 3] = rng.integers(120, 140, (5, 40))
+        rgbe[:, 5:20, :] = rgbe[:, 5:6, :]  # runs to encode as runs
+        rgbe[:, :, 0] = np.where(rgbe[:, :, 0] == 2, 3, rgbe[:, :, 0])  # no flat line looks RLE
+        header = b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 5 +X 40\n"
+        (out / "wide_flat.hdr").write_bytes(header + rgbe.tobytes())
+        (out / "wide_rle.hdr").write_bytes(header + b"".join(rle_scanline(r) for r in rgbe))
+        scale = np.ldexp(1.0, rgbe[:, :, 3].astype(np.int64) - 136)[:, :, None]
+        for other, values in ((out / "wide_flat.hdr", rgbe[:, :, :3] * scale),):
+            got = batch(binary, [(out / "wide_rle.hdr", other)], "--metric", "rmse")[0]
+            if got.get("rmse", {}).get("value", -1) != 0:
+                failures.append(f"run-length encoded HDR differs from the flat one: {got}")
+        (out / "wide_half.hdr").write_bytes(header + (rgbe // 2).tobytes())
+        half = (rgbe // 2)
+        half_values = half[:, :, :3] * np.ldexp(1.0, half[:, :, 3].astype(np.int64) - 136)[:, :, None]
+        half_values[half[:, :, 3] == 0] = 0
+        want = float(np.sqrt(np.mean((values - half_values) ** 2)))
+        got = batch(binary, [(out / "wide_rle.hdr", out / "wide_half.hdr")], "--metric", "rmse")[0]
+        if abs(got.get("rmse", {}).get("value", -1) - want) > 1e-6 * max(1.0, want):
+            failures.append(f"run-length encoded HDR RMSE {got} != {want}")
         # 5. Folder mode: each JPEG pair's mismatch is Resemble's on the decoded PNGs.
         for side in ("actual", "expected", "actual_png", "expected_png"):
             (out / side).mkdir()
@@ -163,14 +210,14 @@ def main():
                     or "aosuite reads PNG, EXR, JPEG, TIFF" not in run.stderr:
                 failures.append(f"{bad}: exit {run.returncode}, {run.stderr!r}")
         # 7. Each decoder library is loaded for its formats only: a PNG comparison maps neither,
-        # a JPEG one (and WebP) libaosuite_codecs.so alone, with no OpenImageIO and so no OpenCV
-        # (Debian's OpenImageIO links it), a TIFF one OpenImageIO.
+        # a JPEG, WebP or TIFF one libaosuite_codecs.so alone, with no OpenImageIO and so no
+        # OpenCV (Debian's OpenImageIO links it), a Targa or BMP one OpenImageIO.
         png_a, png_b = made[0][1], made[1][1]
-        jpeg = next(f for f, _ in made if f.suffix == ".jpg")
-        webp = next(f for f, _ in made if f.suffix == ".webp")
-        tiff = next(f for f, _ in made if f.suffix == ".tif")
-        for pair, codecs, oiio in (((png_a, png_b), False, False), ((jpeg, png_b), True, False),
-                                   ((webp, png_b), True, False), ((tiff, png_b), True, True)):
+        first = {suffix: next(f for f, _ in made if f.suffix == suffix)
+                 for suffix in (".jpg", ".webp", ".tif", ".tga", ".bmp")}
+        expected = [((png_a, png_b), False, False)] + [
+            ((first[s], png_b), True, s in (".tga", ".bmp")) for s in first]
+        for pair, codecs, oiio in expected:
             run = subprocess.run([binary, "compare", str(pair[0]), str(pair[1])],
                                  env={"LD_DEBUG": "files", "PATH": "/usr/bin:/bin"},
                                  capture_output=True, text=True, check=False)
