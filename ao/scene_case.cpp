@@ -45,7 +45,7 @@ std::string render_ext(std::string_view image) { return image == "ao_float" ? ".
 std::string SceneCase::input_hash(const Case& c, const std::string& environment) const {
   ContentHash h;
   h.add(build_hash()).add(environment);
-  for (std::string_view name : rd::shader_names()) h.add(name).add(rd::shader_text(name));
+  h.add(rd::shaders_hash());
   for (const rd::Mesh& m : scene->meshes) {
     h.add(std::span(m.positions))
         .add(std::span(m.normals))

@@ -12,6 +12,7 @@
 #include "common/file_io.hpp"
 #include "reference/error_metrics.hpp"
 #include "reference/reference_cache.hpp"
+#include "renderer/passes/shader_library.hpp"
 #include "renderer/renderer.hpp"
 #include "renderer/scene/scene_file.hpp"
 
@@ -29,7 +30,7 @@ struct Item {
   std::size_t scene_index;
   std::size_t radius_index;
   float radius;
-  std::string key;  // "scene/view/r"
+  std::string key;  // "scene/view/r/reference key"
   cv::Mat reference, mask;
 };
 
@@ -37,11 +38,12 @@ struct Item {
 // settings they were made under.
 class Measurements {
  public:
-  Measurements(fs::path file, const TuneSettings& s) : file_(std::move(file)) {
-    header_ = {{"technique", std::string(rd::technique_name(s.technique))},
-               {"width", s.width},
-               {"height", s.height},
-               {"rays", s.rays}};
+  explicit Measurements(fs::path file) : file_(std::move(file)) {}
+
+  // Reads the file, if there is one, and refuses it unless it was measured under `settings`
+  // (technique, size, rays, the GL renderer and the shaders' hash).
+  void open(nlohmann::json settings) {
+    header_ = std::move(settings);
     if (file_.empty() || !fs::exists(file_)) return;
     const std::vector<unsigned char> bytes = read_file(file_);
     const nlohmann::json j = nlohmann::json::parse(bytes.begin(), bytes.end(), nullptr, false);
@@ -96,6 +98,7 @@ class Evaluator {
   }
 
   const std::deque<Item>& items() const { return items_; }
+  std::string gl() const { return renderer_.gl_description(); }
   const std::deque<rd::Scene>& scenes() const { return scenes_; }
   const std::vector<std::string>& empty_views() const { return empty_views_; }
   int renders() const { return renders_; }
@@ -158,10 +161,13 @@ class Evaluator {
       const rd::Camera camera = rd::make_camera(view, s_.width, s_.height);
       for (std::size_t r = 0; r < s_.radii.size(); ++r) {
         const float radius = s_.radii[r];
-        items_.push_back(
-            {&scene, &view, index, r, radius,
-             fmt::format("{}/{}/{}", scene.name, view.name, radius),
-             cache.get(camera, g.depth, g.normal, {s_.rays, radius, ref::Variant::kAo}), mask});
+        const ref::ReferenceSettings rs{s_.rays, radius, ref::Variant::kAo};
+        // The reference's key covers the geometry, camera and G-buffer: an edited scene
+        // file is a new item, never an old measurement.
+        items_.push_back({&scene, &view, index, r, radius,
+                          fmt::format("{}/{}/{}/{}", scene.name, view.name, radius,
+                                      cache.key(camera, g.depth, g.normal, rs)),
+                          cache.get(camera, g.depth, g.normal, rs), mask});
       }
     }
   }
@@ -193,8 +199,14 @@ void check(const TuneSettings& s) {
 TuneResult run_tune(const TuneSettings& s, const std::function<void(const TuneProgress&)>& on) {
   check(s);
   const TuneSpace space(s.technique);
-  Measurements m(s.state, s);
+  Measurements m(s.state);
   Evaluator ev(s, space, m);
+  m.open({{"technique", std::string(rd::technique_name(s.technique))},
+          {"width", s.width},
+          {"height", s.height},
+          {"rays", s.rays},
+          {"gl", ev.gl()},
+          {"shaders", rd::shaders_hash()}});
   TuneResult out;
   out.defaults = rd::default_params(s.technique);
   out.default_taps = depth_taps(space, out.defaults);

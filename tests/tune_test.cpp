@@ -214,6 +214,26 @@ TEST_F(TuneRun, AnInterruptedTuneResumesToTheSameResult) {
   EXPECT_EQ(resumed.tuned_error, whole.tuned_error);
 }
 
+// A measurement belongs to the scene's content, not its name: a scene file edited between two
+// runs is measured again, and the views that did not change are not.
+TEST_F(TuneRun, AnEditedSceneIsMeasuredAgain) {
+  const auto scene = [&](float height) {
+    std::ofstream(dir_ / "s.toml", std::ios::trunc)
+        << "name = \"s\"\n[[meshes]]\nplane = 20\n[[meshes]]\nbox = { min = [-1, 0, -1], max = "
+           "[1, "
+        << height << ", 1] }\n[[views]]\nname = \"v\"\neye = [3, 2, 4]\ntarget = [0, 0.5, 0]\n";
+  };
+  scene(1);
+  s_.scenes = {(dir_ / "s.toml").string(), "corner"};
+  s_.radii = {1};
+  const aosuite::ao::TuneResult first = aosuite::ao::run_tune(s_);
+  EXPECT_EQ(aosuite::ao::run_tune(s_).renders, 0);
+  scene(1.5f);
+  const aosuite::ao::TuneResult edited = aosuite::ao::run_tune(s_);
+  EXPECT_GT(edited.renders, 0);
+  EXPECT_LT(edited.renders, first.renders);  // corner's measurements stand
+}
+
 TEST_F(TuneRun, BadSettingsAreRefused) {
   s_.scenes.clear();
   EXPECT_THROW(aosuite::ao::run_tune(s_), std::invalid_argument);

@@ -7,6 +7,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "common/content_hash.hpp"
+
 namespace aosuite::renderer {
 
 const std::map<std::string_view, std::string_view>& embedded_shaders();  // generated
@@ -30,6 +32,12 @@ std::vector<std::string_view> shader_names() {
   std::vector<std::string_view> names;
   for (const auto& [name, text] : embedded_shaders()) names.push_back(name);
   return names;
+}
+
+std::string shaders_hash() {
+  ContentHash h;
+  for (std::string_view name : shader_names()) h.add(name).add(shader_text(name));
+  return h.hex();
 }
 
 }  // namespace aosuite::renderer

@@ -15,4 +15,8 @@ std::string shader_text(std::string_view name);
 // Every embedded shader file name, sorted (what a content hash of "the shaders" covers).
 std::vector<std::string_view> shader_names();
 
+// Every shader's name and text as shader_text gives it, as 16 hex digits: what a result
+// measured with these shaders depends on (a suite case's input hash, a tune's measurements).
+std::string shaders_hash();
+
 }  // namespace aosuite::renderer
