@@ -1,7 +1,8 @@
 // The codecs library's entry point (image/codecs_library.cpp with the TIFF and HDR decoders,
 // compiled in) on any bytes: 0 with an image of the size it asked room for, 1 with a one-line
 // reason, or 2 (left to OpenImageIO); never a crash, and never more memory than allowed. The
-// hand-written RGBE reader is the one to watch; libjpeg, libtiff and libwebp come along.
+// hand-written RGBE, Targa and BMP readers are the ones to watch; libjpeg, libtiff and libwebp
+// come along.
 #include <cstring>
 #include <string>
 #include <vector>
@@ -35,7 +36,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   Room room;
   char format[64] = {}, err[512] = {};
   const int rc =
-      aosuite_read_image(data, size, "x", &allocate, &room, format, sizeof format, err, sizeof err);
+      // Named .tga: bytes with no signature then go to the Targa reader, which has none.
+      aosuite_read_image(data, size, "x.tga", &allocate, &room, format, sizeof format, err,
+                         sizeof err);
   if (rc < 0 || rc > 2) aosuite::fuzz::fail("aosuite_read_image returned neither 0, 1 nor 2");
   if (rc == 1 && err[0] == '\0') aosuite::fuzz::fail("failed in silence");
   if (rc == 0 && room.bytes.empty()) aosuite::fuzz::fail("an image without pixels");

@@ -28,4 +28,13 @@ int read_tiff(const unsigned char* bytes, std::size_t size, Allocate allocate, v
 int read_hdr(const unsigned char* bytes, std::size_t size, Allocate allocate, void* user,
              std::string& why);
 
+// Targa: true colour at 24 or 32 bits or grey at 8, run-length encoded or not (colour-mapped,
+// 16-bit, right-to-left: kNotMine).
+int read_tga(const unsigned char* bytes, std::size_t size, Allocate allocate, void* user,
+             std::string& why);
+// BMP: uncompressed 24-bit, either row order (palettes, 16 or 32 bits, bit fields, RLE:
+// kNotMine).
+int read_bmp(const unsigned char* bytes, std::size_t size, Allocate allocate, void* user,
+             std::string& why);
+
 }  // namespace aosuite::codecs

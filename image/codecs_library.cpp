@@ -1,9 +1,10 @@
-// libaosuite_codecs.so: JPEG (libjpeg-turbo), WebP (libwebp), TIFF (libtiff) and Radiance HDR,
-// the formats renderers write most after PNG and EXR, each read with its own library rather
-// than OpenImageIO, whose Debian build maps OpenCV, FFmpeg, DCMTK and OpenVDB into the process
-// (about 350 ms of start-up). Same entry point as libaosuite_oiio.so (image/image_library.hpp);
-// returns 2 for a file it leaves to that library (another format, or a variant such as a CMYK
-// JPEG or a tiled TIFF). The JPEG and WebP decoders are here, TIFF and HDR in codec_*.cpp.
+// libaosuite_codecs.so: JPEG (libjpeg-turbo), WebP (libwebp), TIFF (libtiff), Radiance HDR,
+// Targa and BMP, the formats renderers write after PNG and EXR, each read with its own library
+// (or a few lines here) rather than OpenImageIO, whose Debian build maps OpenCV, FFmpeg, DCMTK and
+// OpenVDB into the process (about 350 ms of start-up). Same entry point as libaosuite_oiio.so
+// (image/image_library.hpp); returns 2 for a file it leaves to that library (another format, or a
+// variant such as a CMYK JPEG or a tiled TIFF). The JPEG and WebP decoders are here, the others in
+// codec_*.cpp.
 
 // jpeglib.h uses size_t and FILE without declaring them: their C headers come first.
 // clang-format off
@@ -14,12 +15,14 @@
 #include <webp/decode.h>
 
 #include <algorithm>
+#include <cctype>
 #include <csetjmp>
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <string>
+#include <string_view>
 
 #include "image/codecs.hpp"
 #include "image/image_library.hpp"
@@ -114,9 +117,10 @@ int read_jpeg(const unsigned char* bytes, std::size_t size, Allocate allocate, v
 
 namespace {
 
-// The decoder for the bytes' signature, or none.
+// The decoder for the bytes' signature (Targa has none: its extension), or none.
 using Decoder = int (*)(const unsigned char*, std::size_t, Allocate, void*, std::string&);
-Decoder decoder_for(const unsigned char* b, std::size_t n, const char*& format) {
+Decoder decoder_for(const unsigned char* b, std::size_t n, std::string_view file,
+                    const char*& format) {
   const auto starts = [&](const char* magic, std::size_t at = 0) {
     const std::size_t len = std::strlen(magic);
     return n >= at + len && std::memcmp(b + at, magic, len) == 0;
@@ -127,18 +131,23 @@ Decoder decoder_for(const unsigned char* b, std::size_t n, const char*& format) 
                  (b[0] == 'M' && b[1] == 'M' && b[2] == 0 && b[3] == 42)))
     return format = "tiff", read_tiff;
   if (starts("#?RADIANCE") || starts("#?RGBE")) return format = "hdr", read_hdr;
+  if (starts("BM")) return format = "bmp", read_bmp;
+  std::string ext(file.substr(std::min(file.size(), file.rfind('.'))));
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (ext == ".tga") return format = "targa", read_tga;
   return nullptr;
 }
 
 }  // namespace
 }  // namespace aosuite::codecs
 
-extern "C" int aosuite_read_image(const unsigned char* bytes, std::size_t size, const char*,
+extern "C" int aosuite_read_image(const unsigned char* bytes, std::size_t size, const char* file,
                                   aosuite::codecs::Allocate allocate, void* user, char* format,
                                   std::size_t format_len, char* err, std::size_t err_len) {
   namespace cd = aosuite::codecs;
   const char* name = "";
-  const cd::Decoder decode = cd::decoder_for(bytes, size, name);
+  const cd::Decoder decode = cd::decoder_for(bytes, size, file ? file : "", name);
   if (!decode) return cd::kNotMine;
   std::string why;
   const int rc = decode(bytes, size, allocate, user, why);

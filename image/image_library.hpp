@@ -1,6 +1,6 @@
 // The C entry point of the libraries that read image formats beyond PNG and EXR, which aosuite
-// decodes itself: libaosuite_codecs.so (image/codecs_library.cpp: JPEG, WebP, TIFF and HDR with
-// their own libraries) and libaosuite_oiio.so (image/image_library.cpp: the rest, through
+// decodes itself: libaosuite_codecs.so (image/codecs_library.cpp: JPEG, WebP, TIFF, HDR, Targa
+// and BMP) and libaosuite_oiio.so (image/image_library.cpp: the rarer variants, through
 // OpenImageIO). Only
 // C types cross the boundary: image/other_formats.cpp opens the library only when a file is
 // neither, so a PNG comparison never pays OpenImageIO's start-up.

@@ -81,8 +81,8 @@ Picture decode_other_format(std::span<const unsigned char> bytes, const std::str
   Decoded d;
   d.max_bytes = max_bytes;
   char format[64] = {}, err[512] = {};
-  // JPEG, WebP, TIFF and HDR with their own libraries; the rest (and rare variants) through
-  // OpenImageIO, which is then the only reason to load it. A library that cannot be opened
+  // The codecs library first; OpenImageIO for what it leaves (rare variants), which is then
+  // the only reason to load it. A library that cannot be opened
   // leaves the file to the next one, as 2 does.
   int rc = 2;
   std::string unopened;

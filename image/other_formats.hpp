@@ -1,6 +1,6 @@
-// Images in the formats aosuite does not decode itself: JPEG, WebP, TIFF and Radiance HDR with
-// their own libraries in libaosuite_codecs.so, the rest (Targa, BMP, rarer variants) through
-// OpenImageIO in libaosuite_oiio.so; each library is opened only when such a file is read.
+// Images in formats other than PNG and EXR: JPEG, WebP, TIFF, Radiance HDR, Targa and BMP in
+// libaosuite_codecs.so (their own libraries, or a few lines), rare variants through OpenImageIO
+// in libaosuite_oiio.so; each library is opened only when such a file is read.
 #pragma once
 
 #include <cstdint>

@@ -56,6 +56,8 @@ def cases(rng, out):
              Image.fromarray(image(rng, h, w, 1, 65535).astype(np.uint16)[:, :, 0], "I;16"), {}),
             (f"rgb_{i}.bmp", Image.fromarray(rgb), {}),
             (f"rgba_{i}.tga", Image.fromarray(rgba, "RGBA"), {}),
+            (f"rle_{i}.tga", Image.fromarray(rgb), {"compression": "tga_rle"}),
+            (f"top_{i}.tga", Image.fromarray(grey, "L"), {"orientation": 1}),
         ]
         for name, img, opts in writes:
             path = out / name
@@ -210,13 +212,16 @@ def main():
                     or "aosuite reads PNG, EXR, JPEG, TIFF" not in run.stderr:
                 failures.append(f"{bad}: exit {run.returncode}, {run.stderr!r}")
         # 7. Each decoder library is loaded for its formats only: a PNG comparison maps neither,
-        # a JPEG, WebP or TIFF one libaosuite_codecs.so alone, with no OpenImageIO and so no
-        # OpenCV (Debian's OpenImageIO links it), a Targa or BMP one OpenImageIO.
+        # a JPEG, WebP, TIFF, Targa or BMP one libaosuite_codecs.so alone, with no OpenImageIO
+        # and so no OpenCV (Debian's OpenImageIO links it); a colour-mapped Targa, which the
+        # codecs library leaves to it, OpenImageIO.
         png_a, png_b = made[0][1], made[1][1]
         first = {suffix: next(f for f, _ in made if f.suffix == suffix)
                  for suffix in (".jpg", ".webp", ".tif", ".tga", ".bmp")}
-        expected = [((png_a, png_b), False, False)] + [
-            ((first[s], png_b), True, s in (".tga", ".bmp")) for s in first]
+        mapped = out / "palette.tga"
+        Image.fromarray(np.asarray(Image.open(made[0][1]))[:, :, :3]).quantize(16).save(mapped)
+        expected = [((png_a, png_b), False, False), ((mapped, png_b), True, True)] + [
+            ((first[s], png_b), True, False) for s in first]
         for pair, codecs, oiio in expected:
             run = subprocess.run([binary, "compare", str(pair[0]), str(pair[1])],
                                  env={"LD_DEBUG": "files", "PATH": "/usr/bin:/bin"},
