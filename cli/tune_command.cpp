@@ -4,7 +4,9 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <nlohmann/json.hpp>
 
 #include "ao/preset.hpp"
@@ -12,6 +14,7 @@
 #include "cli/commands.hpp"
 #include "common/file_io.hpp"
 #include "renderer/scene/scene.hpp"
+#include "renderer/scene/scene_file.hpp"
 
 namespace aosuite::cli {
 namespace {
@@ -115,9 +118,35 @@ void print_result(const TuneArgs& a, const ao::TuneResult& r) {
   fmt::print("measurements: {} rendered, {} reused from {}\n", r.renders, r.reused, a.state);
 }
 
+// The built-in scenes, the downloadable ones that are here (the dragon), and the scene files
+// of ./suites/scenes (the project's: meshes of ../shared/assets) that load; one line on stderr
+// for each left out.
+std::vector<std::string> default_scenes() {
+  std::vector<std::string> out = rd::builtin_scene_names();
+  for (const std::string& name : rd::downloadable_scene_names()) {
+    if (std::filesystem::exists(rd::downloadable_scene_file(name))) out.push_back(name);
+  }
+  const std::filesystem::path dir = "suites/scenes";
+  std::error_code ec;
+  if (!std::filesystem::is_directory(dir, ec)) return out;
+  std::vector<std::string> files;
+  for (const auto& entry : std::filesystem::directory_iterator(dir, ec))
+    if (entry.path().extension() == ".toml") files.push_back(entry.path().generic_string());
+  std::ranges::sort(files);
+  for (const std::string& file : files) {
+    try {
+      rd::load_scene_file(file);
+      out.push_back(file);
+    } catch (const std::exception& e) {
+      fmt::print(stderr, "aosuite tune: left out {}\n", printable(e.what()));
+    }
+  }
+  return out;
+}
+
 int run_tune(TuneArgs& a) {
   a.s.technique = rd::parse_technique(a.technique);
-  a.s.scenes = a.scenes.empty() ? rd::builtin_scene_names() : a.scenes;
+  a.s.scenes = a.scenes.empty() ? default_scenes() : a.scenes;
   if (a.out.empty()) a.out = fmt::format("reports/tune/{}.toml", a.technique);
   if (a.state.empty()) a.state = a.out + ".state.json";
   a.s.state = a.state;
@@ -151,7 +180,8 @@ void add_tune_command(CLI::App& app, int& rc) {
   cmd->add_option("--radius", a->s.radii, "radius in scene units, repeatable")
       ->capture_default_str();
   cmd->add_option("--scenes", a->scenes,
-                  "built-in scenes or scene files, comma-separated (default: every built-in)")
+                  "built-in scenes or scene files, comma-separated (default: every built-in, the "
+                  "dragon if fetched, and ./suites/scenes/*.toml that load)")
       ->delimiter(',');
   cmd->add_option("--width", a->s.width)->capture_default_str();
   cmd->add_option("--height", a->s.height)->capture_default_str();

@@ -130,6 +130,30 @@ double tuned_radius_scale(const std::string& technique) {
   return std::stod(file.substr(at + 16));
 }
 
+// With no --scenes, tune takes the built-in scenes and the scene files of ./suites/scenes that
+// load (the project's meshes), saying which it left out.
+TEST_F(Presets, TuneDefaultsToTheBuiltInScenesAndTheProjectsSceneFiles) {
+  fs::create_directories(dir_ / "suites" / "scenes");
+  std::ofstream(dir_ / "suites" / "scenes" / "good.toml")
+      << "[[meshes]]\nplane = 10\n[[meshes]]\nbox = { min = [-1, 0, -1], max = [1, 1, 1] }\n"
+         "[[views]]\nname = \"v\"\neye = [3, 2, 4]\ntarget = [0, 0.5, 0]\n";
+  std::ofstream(dir_ / "suites" / "scenes" / "bad.toml")
+      << "[[meshes]]\nfile = \"missing.ply\"\n[[views]]\nname = \"v\"\neye = [3, 2, 4]\n"
+         "target = [0, 0, 0]\n";
+  const test::Outcome r = aosuite(
+      "tune --technique alchemy --width 32 --height 18 --rays 8 --trials 2 --out t/a.toml "
+      "--json t/r.json",
+      "AOSUITE_REFERENCE_CACHE=" + (dir_ / "refs").string() + " ");
+  ASSERT_EQ(r.rc, 0) << r.err;
+  const nlohmann::json scenes = nlohmann::json::parse(read_text(dir_ / "t" / "r.json"))["scenes"];
+  for (const char* want :
+       {"plane", "corner", "spheres", "village", "workshop", "suites/scenes/good.toml"})
+    EXPECT_NE(std::find(scenes.begin(), scenes.end(), want), scenes.end()) << want << scenes;
+  EXPECT_EQ(std::find(scenes.begin(), scenes.end(), "suites/scenes/bad.toml"), scenes.end());
+  EXPECT_NE(r.err.find("aosuite tune: left out suites/scenes/bad.toml"), std::string::npos)
+      << r.err;
+}
+
 // A built-in preset is named where a file is: `--preset tuned` is ao/presets/tuned-T.toml for
 // every screen-space technique, in render and in a suite; an unknown name lists the built-ins.
 TEST_F(Presets, TheBuiltInTunedPresetIsNamedLikeAFile) {
