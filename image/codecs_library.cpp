@@ -15,16 +15,14 @@
 #include <webp/decode.h>
 
 #include <algorithm>
-#include <cctype>
 #include <csetjmp>
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
-#include <cstring>
 #include <string>
-#include <string_view>
 
 #include "image/codecs.hpp"
+#include "image/format_signature.hpp"
 #include "image/image_library.hpp"
 
 namespace aosuite::codecs {
@@ -117,25 +115,26 @@ int read_jpeg(const unsigned char* bytes, std::size_t size, Allocate allocate, v
 
 namespace {
 
-// The decoder for the bytes' signature (Targa has none: its extension), or none.
+// The decoder for the file's format, or none (GIF and unknown bytes: OpenImageIO's).
 using Decoder = int (*)(const unsigned char*, std::size_t, Allocate, void*, std::string&);
-Decoder decoder_for(const unsigned char* b, std::size_t n, std::string_view file,
-                    const char*& format) {
-  const auto starts = [&](const char* magic, std::size_t at = 0) {
-    const std::size_t len = std::strlen(magic);
-    return n >= at + len && std::memcmp(b + at, magic, len) == 0;
-  };
-  if (n >= 3 && b[0] == 0xFF && b[1] == 0xD8 && b[2] == 0xFF) return format = "jpeg", read_jpeg;
-  if (starts("RIFF") && starts("WEBP", 8)) return format = "webp", read_webp;
-  if (n >= 4 && ((b[0] == 'I' && b[1] == 'I' && b[2] == 42 && b[3] == 0) ||
-                 (b[0] == 'M' && b[1] == 'M' && b[2] == 0 && b[3] == 42)))
-    return format = "tiff", read_tiff;
-  if (starts("#?RADIANCE") || starts("#?RGBE")) return format = "hdr", read_hdr;
-  if (starts("BM")) return format = "bmp", read_bmp;
-  std::string ext(file.substr(std::min(file.size(), file.rfind('.'))));
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  if (ext == ".tga") return format = "targa", read_tga;
+Decoder decoder_for(FileFormat f, const char*& format) {
+  switch (f) {
+    case FileFormat::kJpeg:
+      return format = "jpeg", read_jpeg;
+    case FileFormat::kWebp:
+      return format = "webp", read_webp;
+    case FileFormat::kTiff:
+      return format = "tiff", read_tiff;
+    case FileFormat::kHdr:
+      return format = "hdr", read_hdr;
+    case FileFormat::kBmp:
+      return format = "bmp", read_bmp;
+    case FileFormat::kTarga:
+      return format = "targa", read_tga;
+    case FileFormat::kGif:
+    case FileFormat::kUnknown:
+      break;
+  }
   return nullptr;
 }
 
@@ -147,7 +146,8 @@ extern "C" int aosuite_read_image(const unsigned char* bytes, std::size_t size, 
                                   std::size_t format_len, char* err, std::size_t err_len) {
   namespace cd = aosuite::codecs;
   const char* name = "";
-  const cd::Decoder decode = cd::decoder_for(bytes, size, file ? file : "", name);
+  const cd::Decoder decode =
+      cd::decoder_for(aosuite::format_from_signature(bytes, size, file ? file : ""), name);
   if (!decode) return cd::kNotMine;
   std::string why;
   const int rc = decode(bytes, size, allocate, user, why);

@@ -5,35 +5,39 @@
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
-#include <cctype>
 #include <cstdint>
 #include <cstdio>
-#include <cstring>
 #include <exception>
 #include <filesystem>
 #include <memory>
 #include <string>
 
+#include "image/format_signature.hpp"
+
 namespace {
 
 // The extension OpenImageIO's reader registry knows the format by, from the file's signature.
+// Anything unrecognised is no image (OpenImageIO's EXR reader, handed two bytes named .exr, spun
+// forever); WebP is the codecs library's alone (OpenImageIO 2.4 multiplies its colour by alpha).
 std::string extension_from_signature(const unsigned char* b, std::size_t n, const char* name) {
-  const auto starts = [&](const char* magic, std::size_t at = 0) {
-    const std::size_t len = std::strlen(magic);
-    return n >= at + len && std::memcmp(b + at, magic, len) == 0;
-  };
-  if (n >= 3 && b[0] == 0xFF && b[1] == 0xD8 && b[2] == 0xFF) return "jpg";
-  if (starts("II*") || (n >= 4 && b[0] == 'M' && b[1] == 'M' && b[2] == 0 && b[3] == '*'))
-    return "tif";
-  if (starts("#?RADIANCE") || starts("#?RGBE")) return "hdr";
-  if (starts("BM")) return "bmp";
-  if (starts("GIF8")) return "gif";
-  // Targa alone has no signature: its extension names it. Anything else unrecognised is no
-  // image (OpenImageIO's EXR reader, handed two bytes named .exr, spun forever).
-  std::string ext = std::filesystem::path(name).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext == ".tga" ? "tga" : "";
+  switch (aosuite::format_from_signature(b, n, name)) {
+    case aosuite::FileFormat::kJpeg:
+      return "jpg";
+    case aosuite::FileFormat::kTiff:
+      return "tif";
+    case aosuite::FileFormat::kHdr:
+      return "hdr";
+    case aosuite::FileFormat::kBmp:
+      return "bmp";
+    case aosuite::FileFormat::kGif:
+      return "gif";
+    case aosuite::FileFormat::kTarga:
+      return "tga";
+    case aosuite::FileFormat::kWebp:
+    case aosuite::FileFormat::kUnknown:
+      break;
+  }
+  return "";
 }
 
 }  // namespace
