@@ -36,13 +36,7 @@ void sweep_view(rd::Renderer& renderer, const SweepGrid& g, const harness::Selec
   const rd::Camera camera = rd::make_camera(view, w, h);
   std::optional<rd::Images> gbuffer;
   auto reference = [&](const ref::ReferenceSettings& rs) {
-    if (!gbuffer) {
-      rd::RenderSettings gs;
-      gs.width = w, gs.height = h;
-      gs.outputs = rd::Outputs{false, false, false, false};
-      gs.outputs.normal = true;
-      gbuffer = renderer.render(scene, view, gs);
-    }
+    if (!gbuffer) gbuffer = renderer.render(scene, view, rd::gbuffer_settings(w, h));
     return cache.get(camera, gbuffer->depth, gbuffer->normal, rs);
   };
   const ref::MetricOptions metric{8, 0.05f, g.rays};

@@ -32,6 +32,7 @@ struct Item {
   float radius;
   std::string key;  // "scene/view/r/reference key"
   cv::Mat reference, mask;
+  int pixels;  // in the mask
 };
 
 // The measurements, by parameters (TuneSpace::key) and item, in a JSON file that names the
@@ -148,13 +149,10 @@ class Evaluator {
     const rd::Scene& scene = scenes_[index];
     ref::ReferenceCache cache(scene, ref::default_cache_dir());
     for (const rd::View& view : scene.views) {
-      rd::RenderSettings gs;
-      gs.width = s_.width, gs.height = s_.height;
-      gs.outputs = rd::Outputs{false, false, false, false};
-      gs.outputs.normal = true;
-      const rd::Images g = renderer_.render(scene, view, gs);
+      const rd::Images g = renderer_.render(scene, view, rd::gbuffer_settings(s_.width, s_.height));
       cv::Mat mask = ref::geometry_mask(g.depth, 8);
-      if (cv::countNonZero(mask) == 0) {  // nothing drawn, or only within the border
+      const int pixels = cv::countNonZero(mask);
+      if (pixels == 0) {  // nothing drawn, or only within the border
         empty_views_.push_back(scene.name + "/" + view.name);
         continue;
       }
@@ -167,7 +165,7 @@ class Evaluator {
         items_.push_back({&scene, &view, index, r, radius,
                           fmt::format("{}/{}/{}/{}", scene.name, view.name, radius,
                                       cache.key(camera, g.depth, g.normal, rs)),
-                          cache.get(camera, g.depth, g.normal, rs), mask});
+                          cache.get(camera, g.depth, g.normal, rs), mask, pixels});
       }
     }
   }
@@ -250,8 +248,7 @@ TuneResult run_tune(const TuneSettings& s, const std::function<void(const TunePr
   out.default_error = ev.mean(out.defaults, [](const Item&) { return true; });
   m.save();
   // Timed on the view with the most geometry pixels: the one where the AO does most work.
-  const Item& busiest = *std::ranges::max_element(
-      ev.items(), {}, [](const Item& i) { return cv::countNonZero(i.mask); });
+  const Item& busiest = *std::ranges::max_element(ev.items(), {}, &Item::pixels);
   out.default_ms = ev.ao_ms(out.defaults, busiest, 9);
   out.tuned_ms = ev.ao_ms(out.tuned, busiest, 9);
   out.timed_view = busiest.scene->name + "/" + busiest.view->name;

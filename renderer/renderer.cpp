@@ -18,6 +18,14 @@
 
 namespace aosuite::renderer {
 
+RenderSettings gbuffer_settings(int width, int height) {
+  RenderSettings s;
+  s.width = width, s.height = height;
+  s.outputs = Outputs{false, false, false, false};
+  s.outputs.normal = true;
+  return s;
+}
+
 Outputs parse_outputs(const std::string& csv) {
   if (csv == "all") return {};
   Outputs o{false, false, false, false};

@@ -28,6 +28,10 @@ struct RenderSettings {
   Outputs outputs;
 };
 
+// The depth and view-space normal alone, no AO and no images: the G-buffer a ray-traced
+// reference is traced over.
+RenderSettings gbuffer_settings(int width, int height);
+
 struct Images {
   cv::Mat no_ao, with_ao, ao_only;  // CV_8UC4 RGBA, sRGB, top row first
   cv::Mat ao;                       // CV_32F visibility in [0, 1]; 1 on background
