@@ -1,9 +1,11 @@
 #include "ao/tune_run.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <deque>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <stdexcept>
@@ -13,6 +15,7 @@
 #include "reference/error_metrics.hpp"
 #include "reference/reference_cache.hpp"
 #include "renderer/passes/shader_library.hpp"
+#include "renderer/pmi/pmi_cache.hpp"
 #include "renderer/renderer.hpp"
 #include "renderer/scene/scene_file.hpp"
 
@@ -95,13 +98,16 @@ class Evaluator {
       : s_(s), space_(space), m_(m) {
     for (const std::string& name : s.scenes) scenes_.push_back(rd::load_scene(name));
     for (std::size_t i = 0; i < scenes_.size(); ++i) add_items(i);
-    if (items_.empty()) throw std::invalid_argument("no view of the scenes draws any geometry");
+    if (items_.empty()) {
+      throw std::invalid_argument(fmt::format(
+          "no view of the scenes can be measured (left out: {})", fmt::join(left_out_, "; ")));
+    }
   }
 
   const std::deque<Item>& items() const { return items_; }
   std::string gl() const { return renderer_.gl_description(); }
   const std::deque<rd::Scene>& scenes() const { return scenes_; }
-  const std::vector<std::string>& empty_views() const { return empty_views_; }
+  const std::vector<std::string>& left_out() const { return left_out_; }
   int renders() const { return renders_; }
   int reused() const { return reused_; }
 
@@ -111,7 +117,7 @@ class Evaluator {
       ++reused_;
       return *e;
     }
-    const rd::Images img = renderer_.render(*item.scene, *item.view, settings(params, item));
+    const rd::Images img = render(params, item.scene_index, *item.view, item.radius);
     const double e = ref::masked_rmse(img.ao, item.reference, item.mask);
     ++renders_;
     m_.add(key, item.key, e);
@@ -120,7 +126,8 @@ class Evaluator {
 
   // The median AO time of a frame at the tune's size, over `runs` runs.
   double ao_ms(const rd::AoParams& params, const Item& item, int runs) {
-    return render_timed(renderer_, *item.scene, *item.view, settings(params, item), runs).gl_ms;
+    return render_timed(renderer_, *item.scene, *item.view, settings(params, item.radius), runs)
+        .gl_ms;
   }
 
   // The mean over the items `take` accepts.
@@ -136,24 +143,45 @@ class Evaluator {
 
  private:
   // The float AO alone, at the item's radius.
-  rd::RenderSettings settings(const rd::AoParams& params, const Item& item) const {
+  rd::RenderSettings settings(const rd::AoParams& params, float radius) const {
     rd::RenderSettings rs;
     rs.width = s_.width, rs.height = s_.height, rs.technique = s_.technique;
     rs.params = params;
-    rs.params.radius = item.radius;
+    rs.params.radius = radius;
     rs.outputs = rd::Outputs{false, false, false, true};
     return rs;
   }
 
+  // An object-space technique's maps are held per scene for the whole tune: every trial visits
+  // every scene, more than the Renderer's own cache keeps.
+  rd::Images render(const rd::AoParams& params, std::size_t scene_index, const rd::View& view,
+                    float radius) {
+    const rd::Scene& scene = scenes_[scene_index];
+    const rd::RenderSettings rs = settings(params, radius);
+    if (!rd::object_space(s_.technique)) return renderer_.render(scene, view, rs);
+    const rd::PmiSettings ps = rd::pmi_settings(params);
+    std::shared_ptr<const rd::PmiMaps>& maps = maps_[{scene_index, pmi_content_hash(scene, ps)}];
+    if (!maps) maps = renderer_.pmi_maps(scene, ps);
+    return renderer_.render(scene, view, rs, maps.get());
+  }
+
   void add_items(std::size_t index) {
     const rd::Scene& scene = scenes_[index];
+    // A scene the technique cannot draw (PMI needs an object besides the ground) is left out
+    // with the reason, before its references are made.
+    try {
+      render(rd::default_params(s_.technique), index, scene.views.front(), s_.radii.front());
+    } catch (const std::invalid_argument& e) {
+      left_out_.push_back(fmt::format("{}: {}", scene.name, e.what()));
+      return;
+    }
     ref::ReferenceCache cache(scene, ref::default_cache_dir());
     for (const rd::View& view : scene.views) {
       const rd::Images g = renderer_.render(scene, view, rd::gbuffer_settings(s_.width, s_.height));
       cv::Mat mask = ref::geometry_mask(g.depth, 8);
       const int pixels = cv::countNonZero(mask);
       if (pixels == 0) {  // nothing drawn, or only within the border
-        empty_views_.push_back(scene.name + "/" + view.name);
+        left_out_.push_back(scene.name + "/" + view.name + ": draws no geometry");
         continue;
       }
       const rd::Camera camera = rd::make_camera(view, s_.width, s_.height);
@@ -176,7 +204,8 @@ class Evaluator {
   rd::Renderer renderer_;
   std::deque<rd::Scene> scenes_;  // items point into it
   std::deque<Item> items_;
-  std::vector<std::string> empty_views_;
+  std::map<std::pair<std::size_t, std::uint64_t>, std::shared_ptr<const rd::PmiMaps>> maps_;
+  std::vector<std::string> left_out_;
   int renders_ = 0, reused_ = 0;
 };
 
@@ -208,7 +237,7 @@ TuneResult run_tune(const TuneSettings& s, const std::function<void(const TunePr
   TuneResult out;
   out.defaults = rd::default_params(s.technique);
   out.default_taps = depth_taps(space, out.defaults);
-  out.empty_views = ev.empty_views();
+  out.left_out = ev.left_out();
 
   // One search on the items `take` accepts, reporting as `stage`; saves after each trial.
   auto searched = [&](const std::string& stage, auto take) {

@@ -41,10 +41,12 @@ struct TuneResult {
   // The median AO time of one frame at the tune's size, on the view with the most geometry:
   // what the depth-tap budget stands for, measured, not used by the search (not repeatable).
   double default_ms = 0, tuned_ms = 0;
-  std::string timed_view;                // "scene/view"
-  std::vector<Fold> folds;               // one per scene when there are two or more
-  int renders = 0, reused = 0;           // measurements made, and taken from the state file
-  std::vector<std::string> empty_views;  // "scene/view" that draw no geometry: left out
+  std::string timed_view;       // "scene/view"
+  std::vector<Fold> folds;      // one per scene when there are two or more
+  int renders = 0, reused = 0;  // measurements made, and taken from the state file
+  // Left out, with why: "scene/view: draws no geometry", or "scene: REASON" for a scene the
+  // technique cannot draw (PMI on ground alone).
+  std::vector<std::string> left_out;
 };
 
 struct TuneProgress {

@@ -21,7 +21,7 @@ struct Dimension {
 
 class TuneSpace {
  public:
-  // Throws std::invalid_argument when the technique reads no searched parameter (PMI).
+  // Throws std::invalid_argument when the technique reads no searched parameter.
   explicit TuneSpace(renderer::Technique technique);
 
   renderer::Technique technique() const { return technique_; }

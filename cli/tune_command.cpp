@@ -83,7 +83,7 @@ nlohmann::ordered_json result_json(const TuneArgs& a, const ao::TuneResult& r) {
                      {"params", f.params}});
   }
   j["folds"] = folds;
-  j["empty_views"] = r.empty_views;
+  j["left_out"] = r.left_out;
   return j;
 }
 
@@ -92,7 +92,7 @@ void print_result(const TuneArgs& a, const ao::TuneResult& r) {
   fmt::print("{} at r = {} on {} ({}x{}, reference {} rays), at most {} depth taps\n", a.technique,
              radii_text(a.s.radii), fmt::join(a.s.scenes, ", "), a.s.width, a.s.height, a.s.rays,
              a.s.search.budget_taps);
-  for (const std::string& v : r.empty_views) fmt::print("  {}: draws no geometry, left out\n", v);
+  for (const std::string& v : r.left_out) fmt::print("  left out {}\n", v);
   if (!r.folds.empty()) {
     fmt::print("AO RMSE on the scene left out (searched on the others):\n");
     fmt::print("  {:<14} {:>6} {:>9} {:>9}\n", "held out", "r", "default", "tuned");

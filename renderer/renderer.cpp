@@ -144,8 +144,8 @@ Images Renderer::render(const Scene& scene, const View& view, const RenderSettin
     if (object_space(s.technique)) {  // PMI: cached maps drawn over the scene
       const auto cached = pmi_override ? nullptr : pmi_maps(scene, pmi_settings(s.params));
       if (!st.pmi_pass) st.pmi_pass = std::make_unique<PmiPass>();
-      timers.push_back(
-          st.pmi_pass->run(scene, pmi_override ? *pmi_override : *cached, camera, st.ao_fb.get()));
+      timers.push_back(st.pmi_pass->run(scene, pmi_override ? *pmi_override : *cached, camera,
+                                        s.params, st.ao_fb.get()));
     } else {
       for (PassTimer& t : st.ao_pass(s.technique).run(st.gbuffer, camera, s.params, st.ao_fb.get()))
         timers.push_back(std::move(t));

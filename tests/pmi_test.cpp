@@ -269,6 +269,37 @@ TEST(Pmi, GivenVertexValuesAreDrawnInstead) {
   EXPECT_THROW(shared_renderer().render(s, s.views[0], rs, &half), std::invalid_argument);
 }
 
+// The map `aosuite tune` fits (pmi_ao.frag): visibility v drawn as (1 - intensity (1 -
+// v))^contrast, clamped to [0, 1]; the ground stays 1 whatever the map.
+TEST(Pmi, IntensityAndContrastMapTheVisibility) {
+  const Scene s = notch_scene();
+  RenderSettings rs;
+  rs.width = 64, rs.height = 48, rs.technique = Technique::kPmi;
+  rs.params = default_params(Technique::kPmi);
+  rs.params.blur = Blur::kNone;
+  PmiMaps maps;
+  maps.object = pmi_object(s);
+  maps.vertex_visibility.assign(maps.object.positions.size(), 0.6f);
+  struct Case {
+    float intensity, contrast, want;
+  };
+  for (const Case c : {Case{1, 1, 0.6f}, Case{0.5f, 2, 0.64f}, Case{2, 0.5f, 0.4472136f},
+                       Case{3, 2, 0.0f}, Case{-1, 3, 1.0f}}) {
+    rs.params.intensity = c.intensity, rs.params.contrast = c.contrast;
+    const Images img = shared_renderer().render(s, s.views[0], rs, &maps);
+    int object_pixels = 0;
+    for (int y = 0; y < img.ao.rows; ++y) {
+      for (int x = 0; x < img.ao.cols; ++x) {
+        const float a = img.ao.at<float>(y, x);
+        const bool object = std::abs(a - c.want) < 1e-5f;
+        ASSERT_TRUE(object || std::abs(a - 1.0f) < 1e-5f) << a << " want " << c.want;
+        object_pixels += object;
+      }
+    }
+    EXPECT_GT(object_pixels, 100) << c.intensity << " " << c.contrast;
+  }
+}
+
 TEST(Pmi, ParametersAreValidated) {
   RenderSettings s;
   s.width = 64, s.height = 48, s.technique = Technique::kPmi,

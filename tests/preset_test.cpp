@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -85,8 +86,8 @@ TEST_F(Presets, ASuitesSceneCaseNamesAPreset) {
   EXPECT_NE(r.err.find("a preset for gtao, not sao"), std::string::npos) << r.err;
 }
 
-// `tune` writes a preset with the command that made it, `render` takes it, and a technique
-// with nothing to search is a one-line error that writes nothing.
+// `tune` writes a preset with the command that made it, `render` takes it, and a tune with
+// nothing to measure (PMI on ground alone) is a one-line error that writes nothing.
 TEST_F(Presets, TuneWritesAPresetThatRenderTakes) {
   const std::string env = "AOSUITE_REFERENCE_CACHE=" + (dir_ / "refs").string() + " ";
   test::Outcome r = aosuite(
@@ -114,20 +115,28 @@ TEST_F(Presets, TuneWritesAPresetThatRenderTakes) {
     EXPECT_NEAR(params.at(key).get<double>(), std::stod(value), 1e-6) << kv;
   }
 
-  r = aosuite("tune --technique pmi --scenes corner --out t/pmi.toml", env);
+  r = aosuite("tune --technique pmi --scenes plane --out t/pmi.toml", env);
   EXPECT_EQ(r.rc, 2);
-  EXPECT_NE(r.err.find("pmi has no parameter the tuner searches"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("scene 'plane' has no object for pmi"), std::string::npos) << r.err;
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
   EXPECT_FALSE(fs::exists(dir_ / "t" / "pmi.toml"));
 }
 
-// The radius_scale line of ao/presets/tuned-TECHNIQUE.toml, as the file says it.
-double tuned_radius_scale(const std::string& technique) {
-  const std::string file =
-      read_text(fs::path(AOSUITE_SOURCE_DIR) / "ao" / "presets" / ("tuned-" + technique + ".toml"));
-  const std::size_t at = file.find("\nradius_scale = ");
-  if (at == std::string::npos) throw std::runtime_error("tuned-" + technique + ": no radius_scale");
-  return std::stod(file.substr(at + 16));
+// The [params] of ao/presets/tuned-TECHNIQUE.toml, each value as JSON (a TOML number, list of
+// numbers or quoted word reads the same).
+std::map<std::string, nlohmann::json> tuned_params(const std::string& technique) {
+  std::istringstream file(read_text(fs::path(AOSUITE_SOURCE_DIR) / "ao" / "presets" /
+                                    ("tuned-" + technique + ".toml")));
+  std::map<std::string, nlohmann::json> out;
+  bool in_params = false;
+  for (std::string line; std::getline(file, line);) {
+    if (line == "[params]") in_params = true;
+    const std::size_t eq = line.find(" = ");
+    if (in_params && eq != std::string::npos)
+      out[line.substr(0, eq)] = nlohmann::json::parse(line.substr(eq + 3));
+  }
+  if (out.empty()) throw std::runtime_error("tuned-" + technique + ": no [params]");
+  return out;
 }
 
 // With no --scenes, tune takes the built-in scenes and the scene files of ./suites/scenes that
@@ -155,17 +164,27 @@ TEST_F(Presets, TuneDefaultsToTheBuiltInScenesAndTheProjectsSceneFiles) {
 }
 
 // A built-in preset is named where a file is: `--preset tuned` is ao/presets/tuned-T.toml for
-// every screen-space technique, in render and in a suite; an unknown name lists the built-ins.
+// every technique, in render and in a suite; an unknown name lists the built-ins.
 TEST_F(Presets, TheBuiltInTunedPresetIsNamedLikeAFile) {
-  for (const char* technique : {"alchemy", "sao", "mssao", "ue4", "gtao", "bitmask"}) {
+  for (const char* technique : {"alchemy", "sao", "mssao", "ue4", "gtao", "bitmask", "pmi"}) {
     const test::Outcome r =
         aosuite(std::string("render --scene corner --technique ") + technique +
                 " --preset tuned --radius 0.5 --width 16 --height 9 --outputs with_ao --out o");
     ASSERT_EQ(r.rc, 0) << technique << r.err;
     const nlohmann::json params = nlohmann::json::parse(
         read_text(dir_ / "o" / ("corner_inside_" + std::string(technique) + ".json")))["params"];
-    EXPECT_EQ(params.at("radius"), 0.5);  // --radius, under the preset
-    EXPECT_NEAR(params.at("radius_scale").get<double>(), tuned_radius_scale(technique), 1e-6);
+    if (std::string(technique) != "pmi") {
+      EXPECT_EQ(params.at("radius"), 0.5);  // --radius, under the preset
+    }
+    for (const auto& [key, value] : tuned_params(technique)) {
+      const nlohmann::json got = params.at(key);
+      ASSERT_EQ(got.is_array(), value.is_array()) << technique << key;
+      for (std::size_t i = 0; i < (value.is_array() ? value.size() : 1); ++i) {
+        const auto& w = value.is_array() ? value[i] : value;
+        EXPECT_NEAR((got.is_array() ? got[i] : got).get<double>(), w.get<double>(), 1e-6)
+            << technique << key;
+      }
+    }
   }
   test::Outcome r = aosuite("render --technique gtao --preset nosuch --out wrong");
   EXPECT_EQ(r.rc, 2);
@@ -185,8 +204,8 @@ TEST_F(Presets, TheBuiltInTunedPresetIsNamedLikeAFile) {
     std::string technique;
     for (const nlohmann::json& l : c.at("labels"))
       if (l.at(0) == "technique") technique = l.at(1);
-    EXPECT_NEAR(c.at("params").at("radius_scale").get<double>(), tuned_radius_scale(technique),
-                1e-6)
+    EXPECT_NEAR(c.at("params").at("radius_scale").get<double>(),
+                tuned_params(technique).at("radius_scale").get<double>(), 1e-6)
         << c;
   }
 }

@@ -23,32 +23,48 @@ namespace rd = aosuite::renderer;
 using aosuite::ao::SearchOptions;
 using aosuite::ao::TuneSpace;
 
-std::vector<rd::Technique> tunable() {
-  std::vector<rd::Technique> out;
-  for (const rd::TechniqueInfo& t : rd::techniques())
-    if (t.space == rd::Space::kScreen) out.push_back(t.id);
-  return out;
-}
-
-TEST(TuneSpace, EveryScreenSpaceTechniqueHasDimensionsAndPmiNone) {
-  for (rd::Technique t : tunable()) {
-    const TuneSpace space(t);
+// Every technique searches only what it reads; a screen-space one its radius multiplier too, and
+// PMI the map from its visibility to AO (intensity and contrast) but not its channel's settings,
+// which Table 1 of results.md studies by cost.
+TEST(TuneSpace, EveryTechniqueHasDimensionsItReads) {
+  for (const rd::TechniqueInfo& t : rd::techniques()) {
+    const TuneSpace space(t.id);
     std::set<std::string> keys;
     for (const aosuite::ao::Dimension& d : space.dimensions()) {
-      EXPECT_TRUE(rd::applies(*d.spec, t)) << d.spec->key;
+      EXPECT_TRUE(rd::applies(*d.spec, t.id)) << d.spec->key;
       keys.insert(std::string(d.spec->key));
     }
-    EXPECT_TRUE(keys.count("radius_scale")) << rd::technique_name(t);
     EXPECT_FALSE(keys.count("radius")) << "the radius is the study's";
+    if (t.space == rd::Space::kScreen) {
+      EXPECT_TRUE(keys.count("radius_scale")) << t.name;
+    }
   }
-  EXPECT_THROW(TuneSpace{rd::Technique::kPmi}, std::invalid_argument);
+  EXPECT_EQ(TuneSpace(rd::Technique::kPmi).dimensions().size(), 2u);
+}
+
+// Every technique has a built-in tuned preset holding exactly what the tuner searches for it.
+TEST(TuneSpace, EveryTechniqueHasABuiltInTunedPreset) {
+  for (const rd::TechniqueInfo& t : rd::techniques()) {
+    const aosuite::ao::Preset preset = aosuite::ao::find_preset("tuned", t.id);
+    std::set<std::string> keys;
+    const TuneSpace space(t.id);
+    for (const aosuite::ao::Dimension& d : space.dimensions())
+      keys.insert(std::string(d.spec->key));
+    std::set<std::string> held;
+    for (const auto& [key, value] : preset.params) held.insert(key);
+    EXPECT_EQ(held, keys) << t.name;
+    rd::AoParams p = rd::default_params(t.id);
+    aosuite::ao::apply_preset(preset, t.id, p);
+    EXPECT_NO_THROW(rd::check_params(p)) << t.name;
+  }
 }
 
 TEST(TuneSpace, PointsRoundTripThroughParametersAndPresetFiles) {
   const fs::path dir = fs::temp_directory_path() / "aosuite_tune_space";
   fs::create_directories(dir);
   cv::RNG rng(7);
-  for (rd::Technique t : tunable()) {
+  for (const rd::TechniqueInfo& info : rd::techniques()) {
+    const rd::Technique t = info.id;
     const TuneSpace space(t);
     for (int i = 0; i < 20; ++i) {
       std::vector<double> p(space.dimensions().size());
@@ -234,6 +250,22 @@ TEST_F(TuneRun, AnEditedSceneIsMeasuredAgain) {
   EXPECT_LT(edited.renders, first.renders);  // corner's measurements stand
 }
 
+// PMI is tuned like the others (its map's intensity and contrast, on its cached channel), and a
+// scene it cannot draw is left out with the reason instead of ending the tune.
+TEST_F(TuneRun, PmiFitsItsMapAndLeavesOutAGroundOnlyScene) {
+  s_.technique = rd::Technique::kPmi;
+  s_.scenes = {"plane", "corner", "spheres"};
+  const aosuite::ao::TuneResult r = aosuite::ao::run_tune(s_);
+  ASSERT_EQ(r.left_out.size(), 1u);
+  EXPECT_EQ(r.left_out[0].rfind("plane: ", 0), 0u) << r.left_out[0];
+  ASSERT_EQ(r.folds.size(), 2u);
+  EXPECT_EQ(r.folds[0].held_out, "corner");
+  EXPECT_LT(r.tuned_error, r.default_error);  // the paper's pale map is far from AO's scale
+  EXPECT_EQ(r.tuned_taps, 0);
+  for (const aosuite::ao::Fold& f : r.folds)
+    for (double e : f.tuned_error) EXPECT_TRUE(std::isfinite(e) && e > 0 && e < 1);
+}
+
 TEST_F(TuneRun, BadSettingsAreRefused) {
   s_.scenes.clear();
   EXPECT_THROW(aosuite::ao::run_tune(s_), std::invalid_argument);
@@ -242,8 +274,17 @@ TEST_F(TuneRun, BadSettingsAreRefused) {
   EXPECT_THROW(aosuite::ao::run_tune(s_), std::invalid_argument);
   s_.radii = {1};
   s_.technique = rd::Technique::kPmi;
-  EXPECT_THROW(aosuite::ao::run_tune(s_), std::invalid_argument);
+  s_.scenes = {"plane"};  // ground alone: nothing PMI can draw, so nothing to measure
+  try {
+    aosuite::ao::run_tune(s_);
+    ADD_FAILURE() << "a tune with nothing to measure ran";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("plane: scene 'plane' has no object for pmi"),
+              std::string::npos)
+        << e.what();
+  }
   s_.technique = rd::Technique::kGtao;
+  s_.scenes = {"corner"};
   std::ofstream(s_.state) << "{not json";
   EXPECT_THROW(aosuite::ao::run_tune(s_), aosuite::FileError);
 }

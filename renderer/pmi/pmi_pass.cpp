@@ -8,7 +8,7 @@ namespace aosuite::renderer {
 PmiPass::PmiPass() : program_(make_program({"pmi_ao.vert", "pmi_ao.frag"})) {}
 
 PassTimer PmiPass::run(const Scene& scene, const PmiMaps& maps, const Camera& camera,
-                       GLuint out_fb) const {
+                       const AoParams& params, GLuint out_fb) const {
   if (maps.object.mesh_vertex_base.size() != scene.meshes.size() ||
       maps.vertex_visibility.size() != maps.object.positions.size()) {
     throw std::invalid_argument("PMI maps do not belong to scene '" + scene.name + "'");
@@ -53,6 +53,8 @@ PassTimer PmiPass::run(const Scene& scene, const PmiMaps& maps, const Camera& ca
   const GLuint p = program_.get();
   glUseProgram(p);
   set_view_projection(p, camera);
+  glProgramUniform1f(p, glGetUniformLocation(p, "u_intensity"), params.intensity);
+  glProgramUniform1f(p, glGetUniformLocation(p, "u_contrast"), params.contrast);
   mesh.draw();
   check_gl("PMI pass");
   timer.stop();
