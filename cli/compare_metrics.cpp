@@ -37,14 +37,13 @@ MetricRun run_metrics(const MetricPlan& plan, const std::string& a, const std::s
   side_by_side([&] { pb = read_picture(b, max_bytes); }, [&] { pa = read_picture(a, max_bytes); });
   for (const metric::Gates& g : plan.metrics) {
     const bool map = heatmap && g.metric->heatmap;
-    const bool tool = plan.flip_tool_pooling && g.metric->name == "flip";
-    metric::Measurement m =
-        metric::measure(*g.metric, pa, pb, {.want_map = map, .tool_pooling = tool});
+    metric::Measurement m = metric::measure(
+        *g.metric, pa, pb, {.want_map = map, .tool_pooling = plan.flip_tool_pooling});
     run.json[std::string(g.metric->name)] = m.json();
     std::string line = std::string(g.metric->name) + ":";
     for (const metric::Value& v : m.values)
-      line += tool ? fmt::format(" {} {:.6f}", v.key, v.value)
-                   : fmt::format(" {} {:.6g}", v.key, v.value);
+      line += m.tool_decimals ? fmt::format(" {} {:.{}f}", v.key, v.value, m.tool_decimals)
+                              : fmt::format(" {} {:.6g}", v.key, v.value);
     if (m.nonfinite) line += fmt::format(" ({} NaN/Inf pixels)", m.nonfinite);
     run.lines.push_back(line);
     for (metric::Outcome& o : metric::judge(g, m)) run.outcomes.push_back(std::move(o));

@@ -29,7 +29,10 @@ struct Measurement {
   // Pixels where either float image holds NaN or Inf. SSIM, RMSE and PSNR read those samples as
   // 0; FLIP as its tool does (NaN as 0, Inf as the largest float).
   std::uint64_t nonfinite = 0;
-  RgbaImage map;                             // the error map, when asked for and the metric has one
+  RgbaImage map;  // the error map, when asked for and the metric has one
+  // > 0: print values with this many decimals, as the metric's reference tool does when asked
+  // for its arithmetic (Request::tool_pooling; FLIP's 6); 0: six significant digits.
+  int tool_decimals = 0;
   double value(std::string_view key) const;  // throws std::out_of_range for an unknown key
   nlohmann::ordered_json json() const;       // values, then facts, then nonfinite if any
 };
@@ -39,8 +42,9 @@ struct Request {
   // width * height flags (row-major): when given, means, percentiles and errors cover only the
   // pixels whose flag is non-zero (geometry, not sky); the map still shows every pixel.
   const std::vector<std::uint8_t>* counted = nullptr;
-  // FLIP: NVlabs' tool's own arithmetic (`--flip-pooling tool`: flip::Options::tool_arithmetic,
-  // its powf and its float pooling), to print its numbers; fast powers and exact sums otherwise.
+  // A reference tool's own arithmetic where a metric has one (FLIP, `--flip-pooling tool`:
+  // flip::Options::tool_arithmetic, its powf and its float pooling), to print its numbers; fast
+  // powers and exact sums otherwise. Metrics without one ignore it.
   bool tool_pooling = false;
 };
 

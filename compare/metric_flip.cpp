@@ -48,6 +48,7 @@ Measurement measure_flip(const Picture& reference, const Picture& test, const Re
   }
   Measurement m;
   m.metric = "flip";
+  if (request.tool_pooling) m.tool_decimals = 6;  // FLIP's tool prints "%.6f"
   m.map = std::move(map);
   m.values = {{"mean", f.mean},
               {"weighted_median", f.weighted_median},

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <optional>
 #include <stdexcept>
 
 #include "common/content_hash.hpp"
@@ -110,13 +111,30 @@ void copy_pixel(const RgbaImage& from, RgbaImage& to, std::size_t i) {
   std::copy_n(from.data() + 4 * i, 4, to.data() + 4 * i);
 }
 
+// The tolerance's ignored pixels at the render's size, read on first need (an identical image
+// needs none) and then shared by every golden, the diff and the report's overlay: a mask file
+// is read once per image.
+class Ignored {
+ public:
+  Ignored(const Tolerance& t, const RgbaImage& render) : t_(t), render_(render) {}
+  const std::vector<std::uint8_t>& get() {  // throws as ignored_pixels does
+    if (!pixels_) pixels_ = ignored_pixels(t_, render_.width(), render_.height());
+    return *pixels_;
+  }
+
+ private:
+  const Tolerance& t_;
+  const RgbaImage& render_;
+  std::optional<std::vector<std::uint8_t>> pixels_;
+};
+
 // The render with ignored pixels taken from the golden, so neither Resemble nor the channel
 // delta sees a difference there.
-RgbaImage without_ignored(const RgbaImage& render, const RgbaImage& golden, const Tolerance& t,
+RgbaImage without_ignored(const RgbaImage& render, const RgbaImage& golden, Ignored& ignored_px,
                           const Counted* counted) {
-  if (t.ignore.empty() && t.mask.empty() && !counted) return render;
+  const std::vector<std::uint8_t>& ignored = ignored_px.get();
+  if (ignored.empty() && !counted) return render;
   RgbaImage out = copy_of(render);
-  const std::vector<std::uint8_t> ignored = ignored_pixels(t, render.width(), render.height());
   for (std::size_t i = 0; i < ignored.size(); ++i)
     if (ignored[i]) copy_pixel(golden, out, i);
   if (counted) {  // background: the golden's pixels, so nothing differs there
@@ -291,8 +309,8 @@ void measure_gates(const Picture& golden, const Picture& render, const Tolerance
 // Resemble's figures on an 8-bit image, into `v`. With `counted`, the mismatch is a percentage
 // of the counted pixels, not of the frame.
 void resemble_figures(const RgbaImage& golden, const RgbaImage& render, const Tolerance& t,
-                      const Counted* counted, ImageVerdict& v) {
-  const RgbaImage judged = without_ignored(render, golden, t, counted);
+                      Ignored& ignored, const Counted* counted, ImageVerdict& v) {
+  const RgbaImage judged = without_ignored(render, golden, ignored, counted);
   const resemble::Result r = resemble::compare(golden, judged, resemble_options(t, false));
   v.mismatch_percent = r.raw_mismatch_percentage;
   v.mismatch_text = r.mismatch_percentage;
@@ -319,7 +337,7 @@ Picture metric_picture(std::span<const unsigned char> file, const RgbaImage& dec
 // One golden against the render; kError when the golden cannot be read.
 ImageVerdict against(std::string_view image, std::span<const unsigned char> render_bytes,
                      const RgbaImage& render, const fs::path& golden_file, const Tolerance& t,
-                     bool want_map, const Counted* counted) {
+                     Ignored& ignored, bool want_map, const Counted* counted) {
   ImageVerdict v;
   v.image = std::string(image), v.golden = golden_file;
   try {
@@ -348,7 +366,7 @@ ImageVerdict against(std::string_view image, std::span<const unsigned char> rend
                                 render.width(), render.height());
         return v;
       }
-      resemble_figures(golden, render, t, counted, v);
+      resemble_figures(golden, render, t, ignored, counted, v);
       if (!t.gates.empty() || !t.warn.gates.empty()) {
         try {
           measure_gates(metric_picture(bytes, golden, golden_file.string()),
@@ -401,15 +419,16 @@ bool closer(const ImageVerdict& a, const ImageVerdict& b) {
 }
 
 // Resemble's diff image of a failing or warning 8-bit image of the golden's size, when asked.
-void add_diff(ImageVerdict& v, const RgbaImage& render, const Tolerance& t, bool want_diff,
-              const Counted* counted) {
+void add_diff(ImageVerdict& v, const RgbaImage& render, const Tolerance& t, Ignored& ignored,
+              bool want_diff, const Counted* counted) {
   if (!want_diff || v.mismatch_percent >= 100 || render.empty()) return;
   if (v.status != Status::kFail && v.status != Status::kWarn) return;
   const std::vector<unsigned char> bytes = read_file(v.golden, kMaxFileBytes);
   const RgbaImage golden = decode_rgba8(bytes, v.golden.string(), kMaxFileBytes);
-  v.diff = resemble::compare(golden, without_ignored(render, golden, t, counted),
+  v.diff = resemble::compare(golden, without_ignored(render, golden, ignored, counted),
                              resemble_options(t, true))
                .diff;
+  v.ignored = ignored.get();
 }
 
 }  // namespace
@@ -425,8 +444,10 @@ ImageVerdict judge(std::string_view image, std::span<const unsigned char> render
   // Every accepted golden is read, even after one passes: a damaged golden or variant is an
   // error to repair, not something another variant may hide.
   std::vector<ImageVerdict> tried;
+  Ignored ignored(tolerance, render);
   for (const fs::path& g : goldens)
-    tried.push_back(against(image, render_bytes, render, g, tolerance, want_diff, counted));
+    tried.push_back(
+        against(image, render_bytes, render, g, tolerance, ignored, want_diff, counted));
   for (const ImageVerdict& v : tried) {
     if (v.status == Status::kError) return v;
   }
@@ -439,12 +460,12 @@ ImageVerdict judge(std::string_view image, std::span<const unsigned char> render
   // A variant that passes with a warning before any that fails.
   if (const auto warning = std::ranges::find(tried, Status::kWarn, &ImageVerdict::status);
       warning != tried.end()) {
-    add_diff(*warning, render, tolerance, want_diff, counted);
+    add_diff(*warning, render, tolerance, ignored, want_diff, counted);
     return *warning;
   }
   // None passed: report the closest golden.
   ImageVerdict best = *std::min_element(tried.begin(), tried.end(), closer);
-  add_diff(best, render, tolerance, want_diff, counted);
+  add_diff(best, render, tolerance, ignored, want_diff, counted);
   return best;
 }
 

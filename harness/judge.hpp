@@ -48,6 +48,9 @@ struct ImageVerdict {
   // (verdict::stale_budgets): tolerances to tighten.
   std::vector<std::string> stale;
   RgbaImage diff;  // Resemble's diff image, when asked and not passing
+  // With a diff: the pixels the tolerance ignored (ignored_pixels()), for the report's overlay;
+  // empty when it ignores none.
+  std::vector<std::uint8_t> ignored;
   // The tolerance's metric gates: every gated metric's values, and each gate's outcome (value,
   // limit, margin). Empty for identical images: nothing was measured.
   std::vector<metric::Measurement> measured;

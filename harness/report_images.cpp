@@ -56,6 +56,21 @@ void remove_old_previews(const fs::path& file, const std::string& keep) {
   }
 }
 
+// `rel`'s preview named `stem`.s<k>.png (any k) that an earlier run made, found in one scan of
+// its folder; empty when there is none.
+std::string made_preview(const fs::path& dir, const std::string& rel, const std::string& stem) {
+  const fs::path folder = fs::path(rel).parent_path();
+  std::error_code ec;
+  for (const fs::directory_entry& e : fs::directory_iterator(dir / folder, ec)) {
+    const std::string name = e.path().filename().string();
+    if (!name.starts_with(stem + ".s") || !name.ends_with(".png")) continue;
+    const std::string made = (folder / name).string();
+    if (name == stem + stops_suffix(stops_of_preview(name)) + ".png" && inside(dir, made))
+      return made;
+  }
+  return "";
+}
+
 unsigned char byte_of(float encoded) {
   return static_cast<unsigned char>(std::lround(std::clamp(encoded, 0.0f, 1.0f) * 255.0f));
 }
@@ -129,11 +144,7 @@ std::string shown_image(const fs::path& dir, const std::string& rel) {
     const std::string stem = fmt::format("{}.{:016x}", file.filename().string(),
                                          XXH3_64bits(bytes.data(), bytes.size()));
     // Named by these bytes: made from them (whatever its stops, which the bytes decide).
-    for (int k = 0; k <= kMaxStops; ++k) {
-      const std::string made =
-          (fs::path(rel).parent_path() / (stem + stops_suffix(k) + ".png")).string();
-      if (inside(dir, made)) return made;
-    }
+    if (const std::string made = made_preview(dir, rel, stem); !made.empty()) return made;
     const Picture picture = decode_picture(bytes, file.string(), kMaxFileBytes);
     const int stops = preview_stops(picture);
     const std::string name = stem + stops_suffix(stops) + ".png";

@@ -383,14 +383,10 @@ void judge_case(const Suite& suite, const Case& c, const std::string& platform, 
       write_png_rgba8(case_dir / ("heat_" + name + ".png"), v.heatmap);
       r.files["heat:" + name] = c.id + "/heat_" + name + ".png";
     }
-    if (show && !v.diff.empty()) {  // what the tolerance ignored, drawn over the diff
-      const std::vector<std::uint8_t> ignored =
-          ignored_pixels(c.tolerance, v.diff.width(), v.diff.height());
-      if (!ignored.empty()) {
-        write_png_rgba8(case_dir / ("ignored_" + name + ".png"),
-                        ignored_overlay(ignored, v.diff.width(), v.diff.height()));
-        r.files["ignored:" + name] = c.id + "/ignored_" + name + ".png";
-      }
+    if (show && !v.ignored.empty()) {  // what the tolerance ignored, drawn over the diff
+      write_png_rgba8(case_dir / ("ignored_" + name + ".png"),
+                      ignored_overlay(v.ignored, v.diff.width(), v.diff.height()));
+      r.files["ignored:" + name] = c.id + "/ignored_" + name + ".png";
     }
     if (!c.tolerance.regions.empty() && !v.golden.empty()) {
       const fs::path map = region_map(v.golden, name);
