@@ -135,8 +135,8 @@ SweepGrid parse(const toml::table& t, const fs::path& path, const std::string& p
       const std::optional<std::string> own = tv["preset"].value<std::string>();
       if (!own) throw std::invalid_argument(where + ".preset must be a string");
       add_preset(tg, *own, path);
-    } else if (!preset.empty() && !renderer::object_space(technique)) {
-      add_preset(tg, preset, path);  // PMI has no preset: nothing of it is tuned
+    } else if (!preset.empty()) {
+      add_preset(tg, preset, path);
     }
     if (tg.samples.empty()) tg.samples = {renderer::default_params(technique).samples};
     g.techniques.push_back(std::move(tg));

@@ -35,7 +35,7 @@ struct SweepGrid {
 };
 
 // Throws aosuite::FileError naming the file, and the key at fault, for unreadable or bad input.
-// `preset`: for every screen-space technique table without its own (`sweep --preset`); a file
+// `preset`: for every technique table without its own (`sweep --preset`); a file
 // there is relative to the grid, so give the command line's as an absolute path.
 SweepGrid read_sweep_grid(const std::filesystem::path& path, const std::string& preset = {});
 

@@ -203,14 +203,25 @@ TEST(SweepCli, APresetAppliesUnderTheTablesParams) {
   // `sweep --preset` gives every table without its own preset one, samples included.
   std::ofstream(dir / "plain.toml") << "scenes = [\"corner\"]\nviews = [\"inside\"]\n"
                                        "resolutions = [[64, 36]]\nruns = 1\nrays = 16\n"
-                                       "unbounded = false\n[techniques.ue4]\nradius = [0.5]\n";
+                                       "unbounded = false\n[techniques.ue4]\nradius = [0.5]\n"
+                                       "[techniques.pmi]\nradius = [0.5]\n"
+                                       "params = { viewpoints = 12, pmi_resolution = 64 }\n";
   const Outcome tuned = run_shell(command(dir, "sweep " + (dir / "plain.toml").string() +
                                                    " --preset tuned --out " + (dir / "t").string()),
                                   dir);
   ASSERT_EQ(tuned.rc, 0) << tuned.err;
-  const auto row = nlohmann::json::parse(std::ifstream(dir / "t" / "sweep.json"))["rows"][0];
-  EXPECT_TRUE(row["params"].contains("radius_scale")) << row;
-  EXPECT_LE(row["samples"].get<int>() * 6, 18) << "the tuned UE4 holds the 18-tap budget";
+  const auto tuned_rows = nlohmann::json::parse(std::ifstream(dir / "t" / "sweep.json"))["rows"];
+  ASSERT_EQ(tuned_rows.size(), 2u);
+  for (const auto& row : tuned_rows) {
+    if (row["technique"] == "ue4") {
+      EXPECT_TRUE(row["params"].contains("radius_scale")) << row;
+      EXPECT_LE(row["samples"].get<int>() * 6, 18) << "the tuned UE4 holds the 18-tap budget";
+    } else {  // PMI's tuned map: a fainter occlusion than the paper's
+      EXPECT_EQ(row["technique"], "pmi");
+      EXPECT_LT(row["intensity"].get<double>(), 1) << row;
+      EXPECT_EQ(row["params"]["viewpoints"], "12") << "the table's params win";
+    }
+  }
 }
 
 // A grid split over shards and merged is the single run: the same rows in the same order with
