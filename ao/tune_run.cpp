@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <deque>
-#include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <stdexcept>
@@ -15,7 +14,6 @@
 #include "reference/error_metrics.hpp"
 #include "reference/reference_cache.hpp"
 #include "renderer/passes/shader_library.hpp"
-#include "renderer/pmi/pmi_cache.hpp"
 #include "renderer/renderer.hpp"
 #include "renderer/scene/scene_file.hpp"
 
@@ -117,7 +115,7 @@ class Evaluator {
       ++reused_;
       return *e;
     }
-    const rd::Images img = render(params, item.scene_index, *item.view, item.radius);
+    const rd::Images img = renderer_.render(*item.scene, *item.view, settings(params, item.radius));
     const double e = ref::masked_rmse(img.ao, item.reference, item.mask);
     ++renders_;
     m_.add(key, item.key, e);
@@ -152,25 +150,13 @@ class Evaluator {
     return rs;
   }
 
-  // An object-space technique's maps are held per scene for the whole tune: every trial visits
-  // every scene, more than the Renderer's own cache keeps.
-  rd::Images render(const rd::AoParams& params, std::size_t scene_index, const rd::View& view,
-                    float radius) {
-    const rd::Scene& scene = scenes_[scene_index];
-    const rd::RenderSettings rs = settings(params, radius);
-    if (!rd::object_space(s_.technique)) return renderer_.render(scene, view, rs);
-    const rd::PmiSettings ps = rd::pmi_settings(params);
-    std::shared_ptr<const rd::PmiMaps>& maps = maps_[{scene_index, pmi_content_hash(scene, ps)}];
-    if (!maps) maps = renderer_.pmi_maps(scene, ps);
-    return renderer_.render(scene, view, rs, maps.get());
-  }
-
   void add_items(std::size_t index) {
     const rd::Scene& scene = scenes_[index];
     // A scene the technique cannot draw (PMI needs an object besides the ground) is left out
     // with the reason, before its references are made.
     try {
-      render(rd::default_params(s_.technique), index, scene.views.front(), s_.radii.front());
+      renderer_.render(scene, scene.views.front(),
+                       settings(rd::default_params(s_.technique), s_.radii.front()));
     } catch (const std::invalid_argument& e) {
       left_out_.push_back(fmt::format("{}: {}", scene.name, e.what()));
       return;
@@ -204,7 +190,6 @@ class Evaluator {
   rd::Renderer renderer_;
   std::deque<rd::Scene> scenes_;  // items point into it
   std::deque<Item> items_;
-  std::map<std::pair<std::size_t, std::uint64_t>, std::shared_ptr<const rd::PmiMaps>> maps_;
   std::vector<std::string> left_out_;
   int renders_ = 0, reused_ = 0;
 };

@@ -8,6 +8,7 @@
 #include <random>
 
 #include "renderer/params.hpp"
+#include "renderer/pmi/pmi_cache.hpp"
 #include "renderer/pmi/pmi_channel.hpp"
 #include "renderer/pmi/viewpoint_sphere.hpp"
 #include "renderer/renderer.hpp"
@@ -274,6 +275,30 @@ int pixels_at(const cv::Mat& ao, float value) {
     }
   }
   return n;
+}
+
+// The Renderer's PMI cache holds maps by memory, not by scene count: eight scenes visited in
+// turn, twice (as a tune's every trial visits them), are computed once each; under a budget of
+// one scene's maps each is computed again, and the newest is always kept.
+TEST(Pmi, CacheHoldsWhatItsMemoryBudgetAllows) {
+  shared_renderer();
+  PmiSettings ps;
+  ps.viewpoints = 12, ps.width = 32, ps.height = 24;
+  std::vector<Scene> scenes;
+  for (int i = 0; i < 8; ++i) {  // eight contents: one box a little taller in each
+    scenes.push_back(notch_scene());
+    for (glm::vec3& p : scenes.back().meshes[0].positions) p.y *= 1 + 0.01f * float(i);
+  }
+  PmiCache cache;
+  for (int pass = 0; pass < 2; ++pass)
+    for (const Scene& s : scenes) cache.get(s, ps);
+  EXPECT_EQ(cache.misses(), 8u);
+  PmiCache small(pmi_maps_bytes(*cache.get(scenes[0], ps)) * 3 / 2);
+  for (int pass = 0; pass < 2; ++pass)
+    for (const Scene& s : scenes) small.get(s, ps);
+  EXPECT_EQ(small.misses(), 16u);
+  small.get(scenes.back(), ps);
+  EXPECT_EQ(small.misses(), 16u);
 }
 
 TEST(Pmi, GivenVertexValuesAreDrawnInstead) {

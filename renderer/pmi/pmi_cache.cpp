@@ -20,26 +20,33 @@ std::uint64_t pmi_content_hash(const Scene& scene, const PmiSettings& s) {
   return h.digest();
 }
 
+std::size_t pmi_maps_bytes(const PmiMaps& m) {
+  const auto bytes = [](const auto& v) { return v.size() * sizeof(v[0]); };
+  const PmiChannel& c = m.channel;
+  return bytes(m.object.positions) + bytes(m.object.triangles) + bytes(m.object.mesh_vertex_base) +
+         bytes(c.viewpoints) + bytes(c.view_probability) + bytes(c.polygon_probability) +
+         bytes(c.pmi) + bytes(c.vmi) + bytes(c.view_pmi) + bytes(c.colour_pmi) +
+         bytes(m.polygon_visibility) + bytes(m.vertex_visibility);
+}
+
 std::shared_ptr<const PmiMaps> PmiCache::get(const Scene& scene, const PmiSettings& settings) {
   const std::uint64_t key = pmi_content_hash(scene, settings);
-  age_[key] = ++clock_;
-  auto& entry = entries_[key];
-  if (!entry) {
-    ++misses_;
-    try {
-      entry = std::make_shared<const PmiMaps>(compute_pmi_maps(scene, settings));
-    } catch (...) {
-      entries_.erase(key), age_.erase(key);
-      throw;
-    }
-    if (entries_.size() > kEntries) {
-      const auto oldest = std::min_element(age_.begin(), age_.end(), [](auto& a, auto& b) {
-                            return a.second < b.second;
-                          })->first;
-      entries_.erase(oldest), age_.erase(oldest);
-    }
+  if (const auto hit = entries_.find(key); hit != entries_.end()) {
+    hit->second.used = ++clock_;
+    return hit->second.maps;
   }
-  return entry;
+  ++misses_;
+  auto maps = std::make_shared<const PmiMaps>(compute_pmi_maps(scene, settings));
+  const std::size_t bytes = pmi_maps_bytes(*maps);
+  entries_[key] = {maps, bytes, ++clock_};
+  bytes_ += bytes;
+  while (bytes_ > budget_ && entries_.size() > 1) {
+    const auto oldest =
+        std::ranges::min_element(entries_, {}, [](const auto& e) { return e.second.used; });
+    bytes_ -= oldest->second.bytes;
+    entries_.erase(oldest);
+  }
+  return maps;
 }
 
 }  // namespace aosuite::renderer
