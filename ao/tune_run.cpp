@@ -241,6 +241,7 @@ TuneResult run_tune(const TuneSettings& s, const std::function<void(const TunePr
     if (std::ranges::any_of(ev.items(), [i](const Item& it) { return it.scene_index == i; }))
       measured.push_back(i);
   }
+  for (std::size_t i : measured) out.scenes.push_back(s.scenes[i]);
   const std::size_t n = measured.size();
   for (std::size_t fold_index = 0; n >= 2 && fold_index < n; ++fold_index) {
     const std::size_t f = measured[fold_index], shown = fold_index + 1;

@@ -47,6 +47,7 @@ struct TuneResult {
   // Left out, with why: "scene/view: draws no geometry", or "scene: REASON" for a scene the
   // technique cannot draw (PMI on ground alone).
   std::vector<std::string> left_out;
+  std::vector<std::string> scenes;  // the settings' scenes that were measured, in their order
 };
 
 struct TuneProgress {

@@ -52,7 +52,7 @@ TuneSpace::TuneSpace(rd::Technique technique) : technique_(technique) {
                           [](rd::Blur& (*)(rd::AoParams&)) {}},
                spec.field);
   }
-  if (dims_.empty()) {
+  if (dims_.empty()) {  // none registered now; a new technique whose rows give no search range
     throw std::invalid_argument(
         fmt::format("{} has no parameter the tuner searches", rd::technique_name(technique)));
   }

@@ -87,11 +87,15 @@ nlohmann::ordered_json result_json(const TuneArgs& a, const ao::TuneResult& r) {
   return j;
 }
 
+// Whether the technique's cost is depth taps (screen space); PMI's is its precomputed channel.
+bool taps(rd::Technique t) { return !rd::object_space(t); }
+
 void print_result(const TuneArgs& a, const ao::TuneResult& r) {
   const ao::TuneSpace space(a.s.technique);
-  fmt::print("{} at r = {} on {} ({}x{}, reference {} rays), at most {} depth taps\n", a.technique,
-             radii_text(a.s.radii), fmt::join(a.s.scenes, ", "), a.s.width, a.s.height, a.s.rays,
-             a.s.search.budget_taps);
+  fmt::print(
+      "{} at r = {} on {} ({}x{}, reference {} rays){}\n", a.technique, radii_text(a.s.radii),
+      fmt::join(a.s.scenes, ", "), a.s.width, a.s.height, a.s.rays,
+      taps(a.s.technique) ? fmt::format(", at most {} depth taps", a.s.search.budget_taps) : "");
   for (const std::string& v : r.left_out) fmt::print("  left out {}\n", v);
   if (!r.folds.empty()) {
     fmt::print("AO RMSE on the scene left out (searched on the others):\n");
@@ -110,11 +114,14 @@ void print_result(const TuneArgs& a, const ao::TuneResult& r) {
     }
   }
   fmt::print("preset, searched on every scene: {}\n  {}\n", a.out, space.key(r.tuned));
+  const std::string cost = taps(a.s.technique) ? fmt::format("; {} depth taps (defaults {})",
+                                                             r.tuned_taps, r.default_taps)
+                                               : "";
   fmt::print(
-      "  AO RMSE {:.4f} (defaults {:.4f}); {} depth taps (defaults {}); AO {:.2f} ms a "
-      "frame of {} at {}x{} (defaults {:.2f} ms)\n",
-      r.tuned_error, r.default_error, r.tuned_taps, r.default_taps, r.tuned_ms, r.timed_view,
-      a.s.width, a.s.height, r.default_ms);
+      "  AO RMSE {:.4f} (defaults {:.4f}){}; AO {:.2f} ms a frame of {} at {}x{} (defaults "
+      "{:.2f} ms)\n",
+      r.tuned_error, r.default_error, cost, r.tuned_ms, r.timed_view, a.s.width, a.s.height,
+      r.default_ms);
   fmt::print("measurements: {} rendered, {} reused from {}\n", r.renders, r.reused, a.state);
 }
 
@@ -162,8 +169,10 @@ int run_tune(TuneArgs& a) {
   std::vector<std::string> header = {
       fmt::format("Made by `{}`.", command_line(a)),
       fmt::format("AO RMSE {:.4f} against the ray-traced reference on {} (defaults {:.4f}).",
-                  r.tuned_error, fmt::join(a.s.scenes, ", "), r.default_error),
-      fmt::format("{} depth taps per pixel (defaults {}).", r.tuned_taps, r.default_taps)};
+                  r.tuned_error, fmt::join(r.scenes, ", "), r.default_error)};
+  if (taps(a.s.technique))
+    header.push_back(
+        fmt::format("{} depth taps per pixel (defaults {}).", r.tuned_taps, r.default_taps));
   ao::write_preset(preset, header);
   if (!a.json.empty()) write_text(a.json, result_json(a, r).dump(2) + "\n");
   print_result(a, r);

@@ -419,16 +419,22 @@ bool closer(const ImageVerdict& a, const ImageVerdict& b) {
 }
 
 // Resemble's diff image of a failing or warning 8-bit image of the golden's size, when asked.
+// A golden or mask that cannot be read here (an identical image's two-sided budget reads neither
+// before) makes the verdict kError, naming it.
 void add_diff(ImageVerdict& v, const RgbaImage& render, const Tolerance& t, Ignored& ignored,
               bool want_diff, const Counted* counted) {
   if (!want_diff || v.mismatch_percent >= 100 || render.empty()) return;
   if (v.status != Status::kFail && v.status != Status::kWarn) return;
-  const std::vector<unsigned char> bytes = read_file(v.golden, kMaxFileBytes);
-  const RgbaImage golden = decode_rgba8(bytes, v.golden.string(), kMaxFileBytes);
-  v.diff = resemble::compare(golden, without_ignored(render, golden, ignored, counted),
-                             resemble_options(t, true))
-               .diff;
-  v.ignored = ignored.get();
+  try {
+    const std::vector<unsigned char> bytes = read_file(v.golden, kMaxFileBytes);
+    const RgbaImage golden = decode_rgba8(bytes, v.golden.string(), kMaxFileBytes);
+    v.diff = resemble::compare(golden, without_ignored(render, golden, ignored, counted),
+                               resemble_options(t, true))
+                 .diff;
+    v.ignored = ignored.get();
+  } catch (const std::exception& e) {
+    v.status = Status::kError, v.message = e.what(), v.diff = {};
+  }
 }
 
 }  // namespace

@@ -56,8 +56,9 @@ class Renderer {
   // scene's own PMI (how `aosuite pmi-study` shows ray-traced per-vertex AO the same way).
   Images render(const Scene& scene, const View& view, const RenderSettings& settings,
                 const PmiMaps* pmi_override = nullptr);
-  // PMI's view-independent channel and maps, computed once per scene content and settings
-  // (what Technique::kPmi renders; `aosuite viewpoints` reads the per-view values).
+  // PMI's view-independent channel and maps, computed once per scene content and settings while
+  // the cache's memory budget holds them (PmiCache; what Technique::kPmi renders;
+  // `aosuite viewpoints` reads the per-view values).
   std::shared_ptr<const PmiMaps> pmi_maps(const Scene& scene, const PmiSettings& settings);
 
  private:

@@ -69,8 +69,9 @@ def main():
     # left a scene out (PMI: ground alone), every technique on the scenes they all share.
     full = [t for t in techniques if all(s in held[(t, "default", 0)] for s in scenes)]
     common = [s for s in scenes if all(s in held[(t, "default", 0)] for t in techniques)]
-    ranking_table(full, scenes, held, radii)
-    if len(full) < len(techniques):
+    if full:
+        ranking_table(full, scenes, held, radii)
+    if len(full) < len(techniques) and common:
         ranking_table(techniques, common, held, radii)
     print("| scene | " + " | ".join(f"best at r = {r:g}: default / tuned" for r in radii) + " |")
     print("| --- |" + " --- |" * len(radii))

@@ -374,6 +374,18 @@ TEST_F(Judge, MaskNonZeroPixelsAreIgnoredAndBlackOnesJudged) {
   EXPECT_EQ(run({file}, t).status, Status::kFail);
 }
 
+// An identical image that a two-sided budget fails reads the mask first for its diff: a mask of
+// another size is an error naming it, not an exception out of judge().
+TEST_F(Judge, AMaskOfAnotherSizeIsAnErrorEvenBesideAnIdenticalGolden) {
+  write_file_atomic(dir_ / "g.png", png_);
+  Tolerance t;
+  t.min_differing_pixels = 1;  // a change is expected, and none came
+  t.mask = golden("small_mask.png", cv::Mat(3, 3, CV_8UC4, cv::Scalar(0, 0, 0, 255)));
+  const ImageVerdict v = run({dir_ / "g.png"}, t);
+  EXPECT_EQ(v.status, Status::kError);
+  EXPECT_NE(v.message.find("small_mask.png is 3x3"), std::string::npos) << v.message;
+}
+
 TEST_F(Judge, AnyAcceptedVariantPasses) {
   const fs::path far = golden("g.png", cv::Mat(render_.size(), CV_8UC4, cv::Scalar(0, 0, 0, 255)));
   cv::Mat near = render_.clone();

@@ -293,12 +293,21 @@ TEST(Pmi, CacheHoldsWhatItsMemoryBudgetAllows) {
   for (int pass = 0; pass < 2; ++pass)
     for (const Scene& s : scenes) cache.get(s, ps);
   EXPECT_EQ(cache.misses(), 8u);
-  PmiCache small(pmi_maps_bytes(*cache.get(scenes[0], ps)) * 3 / 2);
+  const std::size_t one = pmi_maps_bytes(*cache.get(scenes[0], ps));
+  PmiCache small(one * 3 / 2);
   for (int pass = 0; pass < 2; ++pass)
     for (const Scene& s : scenes) small.get(s, ps);
   EXPECT_EQ(small.misses(), 16u);
   small.get(scenes.back(), ps);
   EXPECT_EQ(small.misses(), 16u);
+  // Room for two: the least recently used goes, and what is dropped is no longer counted.
+  PmiCache two(one * 5 / 2);
+  for (int i : {0, 1, 0, 2, 0, 1, 2, 1}) two.get(scenes[std::size_t(i)], ps);
+  EXPECT_EQ(two.misses(), 5u);  // 0, 1, 2 (drops 1), 1 (drops 2), 2 (drops 0); 8 if the dropped
+                                // stayed counted
+  PmiCache none(1);             // under one map: the newest is still kept
+  none.get(scenes[0], ps), none.get(scenes[0], ps);
+  EXPECT_EQ(none.misses(), 1u);
 }
 
 TEST(Pmi, GivenVertexValuesAreDrawnInstead) {
