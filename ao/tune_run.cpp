@@ -14,6 +14,7 @@
 #include "reference/error_metrics.hpp"
 #include "reference/reference_cache.hpp"
 #include "renderer/passes/shader_library.hpp"
+#include "renderer/pmi/pmi_object.hpp"
 #include "renderer/renderer.hpp"
 #include "renderer/scene/scene_file.hpp"
 
@@ -152,14 +153,15 @@ class Evaluator {
 
   void add_items(std::size_t index) {
     const rd::Scene& scene = scenes_[index];
-    // A scene the technique cannot draw (PMI needs an object besides the ground) is left out
-    // with the reason, before its references are made.
-    try {
-      renderer_.render(scene, scene.views.front(),
-                       settings(rd::default_params(s_.technique), s_.radii.front()));
-    } catch (const std::invalid_argument& e) {
-      left_out_.push_back(fmt::format("{}: {}", scene.name, e.what()));
-      return;
+    // A scene the technique cannot draw is left out with the reason, before its references are
+    // made: an object-space technique (PMI) needs an object besides the ground.
+    if (rd::object_space(s_.technique)) {
+      try {
+        rd::pmi_object(scene);
+      } catch (const std::invalid_argument& e) {
+        left_out_.push_back(fmt::format("{}: {}", scene.name, e.what()));
+        return;
+      }
     }
     ref::ReferenceCache cache(scene, ref::default_cache_dir());
     for (const rd::View& view : scene.views) {
