@@ -79,6 +79,25 @@ class Search {
     return better;
   }
 
+  // The best point moved by `delta` along dimension `d`. A whole-number parameter that the move
+  // would round back to its value moves one whole step instead: the steps are fractions of a
+  // range, and rounding would otherwise swallow them (a 0/1 switch would never flip).
+  std::vector<double> moved(std::size_t d, double delta) const {
+    std::vector<double> p = best_point_;
+    p[d] = std::clamp(p[d] + delta, 0.0, 1.0);
+    const Dimension& dim = space_.dimensions()[d];
+    if (!dim.integer) return p;
+    const rd::AoParams from = space_.params(best_point_, start_);
+    const int now = std::get<int>(rd::param_value(*dim.spec, from));
+    const int next = now + (delta > 0 ? 1 : -1);
+    if (std::get<int>(rd::param_value(*dim.spec, space_.params(p, start_))) != now ||
+        next < dim.spec->search.lo || next > dim.spec->search.hi)
+      return p;
+    rd::AoParams to = from;
+    rd::set_param(to, dim.spec->key, std::to_string(next));
+    return space_.point(to);
+  }
+
   // One coordinate at a time, both directions, from the best point; the step halves when a
   // full round finds nothing better, down to 1/64 of a range.
   void pattern_search() {
@@ -86,9 +105,7 @@ class Search {
       bool improved = false;
       for (std::size_t d = 0; d < best_point_.size() && trials_ < o_.trials; ++d) {
         for (double sign : {1.0, -1.0}) {
-          std::vector<double> p = best_point_;
-          p[d] = std::clamp(p[d] + sign * step, 0.0, 1.0);
-          if (try_point(p)) {
+          if (try_point(moved(d, sign * step))) {
             improved = true;
             break;
           }

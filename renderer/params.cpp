@@ -173,6 +173,16 @@ const ParamSpec kParams[] = {
      false,
      "0.3",
      {0, 0.7, false}},
+    {"exact_plane",
+     "GTAO: 1 = samples on the slice and arcs over an open plane's, so an open plane is exactly "
+     "1 (0 = XeGTAO's)",
+     only<Technique::kGtao>,
+     +[](AoParams& p) -> int& { return p.gtao.exact_plane; },
+     0,
+     1,
+     false,
+     "1",
+     {0, 1, false}},
     // Capped so the shader's squared lengths stay finite.
     {"thickness",
      "bitmask: assumed thickness of every occluder, scene units",

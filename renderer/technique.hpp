@@ -47,6 +47,10 @@ struct GtaoParams {
   int steps = 3;                 // per side of each slice
   float falloff_range = 0.615f;  // share of the radius over which occluders fade out
   float thin_occluder = 0;       // XeGTAO's ThinOccluderCompensation
+  // 1: each horizon sample on the slice itself (its depth interpolated in 1/z, exact on a plane,
+  // from one gather of the four texels around it) and the arcs divided by those of an open
+  // plane, so an open plane is exactly 1; 0: XeGTAO's, whose samples snap to texel centres.
+  int exact_plane = 0;
 };
 
 // Visibility bitmask (Therrien et al. 2023): GTAO's slices and steps (GtaoParams), and the

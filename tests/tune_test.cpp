@@ -90,7 +90,10 @@ TEST(TuneSpace, PointsRoundTripThroughParametersAndPresetFiles) {
 // answer for the same seed.
 TEST(TuneSearch, FindsAKnownMinimumWithinTheBudgetDeterministically) {
   const TuneSpace space(rd::Technique::kGtao);
-  const std::vector<double> target(space.dimensions().size(), 0.3);
+  // 0.3 along every dimension, as the space can hold it (a whole number rounds, a switch is off).
+  const rd::AoParams base = rd::default_params(rd::Technique::kGtao);
+  const std::vector<double> target =
+      space.point(space.params(std::vector<double>(space.dimensions().size(), 0.3), base));
   auto distance = [&](const rd::AoParams& p) {
     const std::vector<double> x = space.point(p);
     double e = 0;
@@ -105,7 +108,7 @@ TEST(TuneSearch, FindsAKnownMinimumWithinTheBudgetDeterministically) {
   };
   SearchOptions o;
   o.trials = 120, o.budget_taps = 12, o.seed = 3;
-  const rd::AoParams start = rd::default_params(rd::Technique::kGtao);
+  const rd::AoParams start = base;
   const double at_start = distance(start);
   int calls = 0;
   const aosuite::ao::SearchResult a =
@@ -120,6 +123,22 @@ TEST(TuneSearch, FindsAKnownMinimumWithinTheBudgetDeterministically) {
   EXPECT_EQ(a.error, b.error);
   o.budget_taps = 1;  // no GTAO configuration has fewer than 2 taps
   EXPECT_THROW(aosuite::ao::search(space, start, o, bowl), std::invalid_argument);
+}
+
+// The pattern search's steps are fractions of a range: one that rounds a whole-number parameter
+// back to its value moves it one whole step instead, so GTAO's 0/1 exact_plane switch flips.
+TEST(TuneSearch, MovesAWholeNumberParameterAtLeastOneStep) {
+  const TuneSpace space(rd::Technique::kGtao);
+  SearchOptions o;
+  o.trials = 40, o.random_share = 0;  // the pattern search alone, from the defaults
+  o.budget_taps = 64;
+  const aosuite::ao::SearchResult r = aosuite::ao::search(
+      space, rd::default_params(rd::Technique::kGtao), o, [](const rd::AoParams& p) {
+        return (1.0 - p.gtao.exact_plane) + 0.01 * std::abs(p.gtao.steps - 4);
+      });
+  EXPECT_EQ(r.best.gtao.exact_plane, 1);
+  EXPECT_EQ(r.best.gtao.steps, 4);  // 3 to 4: under a quarter of the range, one whole step
+  EXPECT_DOUBLE_EQ(r.error, 0);
 }
 
 TEST(TuneSearch, StartsFromTheGivenParameters) {

@@ -25,7 +25,8 @@ AoUniformBlock ao_uniform_block(const AoParams& p, const Camera& camera) {
           p.gtao.falloff_range,
           p.gtao.thin_occluder,
           p.bitmask.thickness,
-          {0, 0, 0}};
+          p.gtao.exact_plane,
+          {0, 0}};
 }
 
 AoUniformBuffer::AoUniformBuffer() : buffer_(make_buffer(nullptr, sizeof(AoUniformBlock))) {}

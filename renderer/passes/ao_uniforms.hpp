@@ -18,7 +18,8 @@ struct AoUniformBlock {
   std::int32_t slices, steps;
   float falloff_range, thin_occluder;
   float thickness;
-  float std140_padding[3];  // the block's size rounds up to 16 bytes
+  std::int32_t exact_plane;
+  float std140_padding[2];  // the block's size rounds up to 16 bytes
 };
 static_assert(offsetof(AoUniformBlock, samples) == 0);
 static_assert(offsetof(AoUniformBlock, radius) == 4);
@@ -26,6 +27,7 @@ static_assert(offsetof(AoUniformBlock, proj_scale) == 28);
 static_assert(offsetof(AoUniformBlock, slices) == 32);
 static_assert(offsetof(AoUniformBlock, thin_occluder) == 44);
 static_assert(offsetof(AoUniformBlock, thickness) == 48);
+static_assert(offsetof(AoUniformBlock, exact_plane) == 52);
 static_assert(sizeof(AoUniformBlock) == 64);
 
 inline constexpr GLuint kAoUniformBinding = 0;  // the block's `binding` in the GLSL

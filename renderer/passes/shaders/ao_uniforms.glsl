@@ -15,4 +15,5 @@ layout(std140, binding = 0) uniform AoUniforms {
   float u_falloff_range;      // GTAO: share of the radius over which occluders fade out
   float u_thin_occluder;      // GTAO: XeGTAO's ThinOccluderCompensation
   float u_thickness;          // bitmask: every occluder's assumed thickness, scene units
+  int u_exact_plane;          // GTAO: samples on the slice, arcs over an open plane's
 };

@@ -5,8 +5,11 @@
 // preset (design/ao-techniques.md section 6.4). Per pixel, u_slices screen-space slices at
 // angles phi in [0, pi); in each, the horizon on both sides from u_steps samples per side;
 // the cosine-weighted visible arc between the horizons integrated in closed form (eq. 10) and
-// weighted by the projected normal's length (eq. 8 / Algorithm 1 line 27). Visibility is 1 on
-// an unoccluded plane.
+// weighted by the projected normal's length (eq. 8 / Algorithm 1 line 27). That is 1 for an
+// unoccluded plane only on average over the slice angle, and XeGTAO's samples snap to texel
+// centres, off the slice, where a slanted plane can rise above the slice's tangent: with
+// u_exact_plane, samples stay on the slice and the arcs are divided by an open plane's, so an
+// open plane is exactly 1 (results.md: the darkening each part causes).
 uniform sampler2D u_depth;
 uniform sampler2D u_normal;
 #include "ao_uniforms.glsl"  // u_contrast is XeGTAO's FinalValuePower
@@ -16,6 +19,25 @@ layout(location = 0) out float o_ao;
 const float kPi = 3.14159265;
 const float kRadiusMultiplier = 1.457;   // XeGTAO: radius as the RT reference tuned it
 const float kMinVisibility = 0.03;
+
+// The view-space point a horizon sample stands for, at screen position `at`; false on sky.
+// Snapped: the texel under it (XeGTAO). Exact: the depth at `at` itself, interpolated in 1/z
+// (affine in screen space on a plane) from the four texels around it, one gather.
+bool sample_point(vec2 at, vec2 size, out vec3 point) {
+  if (u_exact_plane == 0) {
+    float z = texelFetch(u_depth, ivec2(at), 0).r;
+    point = view_position(floor(at) + 0.5, size, z);
+    return z > 0.0;
+  }
+  vec2 corner = clamp(floor(at - 0.5), vec2(0.0), size - 2.0) + 1.0;  // between four centres
+  vec4 z = textureGather(u_depth, corner / size, 0);  // (0,1) (1,1) (1,0) (0,0) around it
+  if (min(min(z.x, z.y), min(z.z, z.w)) <= 0.0) return false;  // sky among them
+  vec2 t = clamp(at - (corner - 0.5), 0.0, 1.0);
+  vec4 inv = 1.0 / z;
+  float inv_z = mix(mix(inv.w, inv.z, t.x), mix(inv.x, inv.y, t.x), t.y);
+  point = view_position(at, size, 1.0 / inv_z);
+  return true;
+}
 
 void main() {
   ivec2 p = ivec2(gl_FragCoord.xy);
@@ -35,7 +57,8 @@ void main() {
 
   float screen_radius = radius * u_proj_scale / z;  // pixels
   // Fade out where the radius covers few pixels (XeGTAO): few samples would land off the pixel.
-  float visibility = clamp((10.0 - screen_radius) / 100.0, 0.0, 1.0) * 0.5;
+  float fade = clamp((10.0 - screen_radius) / 100.0, 0.0, 1.0) * 0.5;
+  float visible = 0.0, open = 0.0;  // sums over the slices
   if (screen_radius < 1.3) { o_ao = 1.0; return; }  // the whole kernel inside the pixel
   float min_s = 1.3 / screen_radius;  // the first sample leaves the centre pixel
 
@@ -63,10 +86,9 @@ void main() {
       for (int side = 0; side < 2; ++side) {
         vec2 at = vec2(p) + 0.5 + (side == 0 ? offset : -offset);
         if (any(lessThan(at, vec2(0.0))) || any(greaterThanEqual(at, size))) continue;
-        ivec2 q = ivec2(at);
-        float zq = texelFetch(u_depth, q, 0).r;
-        if (zq <= 0.0) continue;  // sky occludes nothing
-        vec3 delta = view_position(vec2(q) + 0.5, size, zq) - centre;
+        vec3 point;
+        if (!sample_point(at, size, point)) continue;  // sky occludes nothing
+        vec3 delta = point - centre;
         float distance = length(delta);
         if (distance <= 0.0) continue;
         // Thin occluders: stretching the depth difference fades samples far behind the
@@ -88,9 +110,13 @@ void main() {
     float arc0 = (cos_n + 2.0 * h0 * sin(n) - cos(2.0 * h0 - n)) * 0.25;
     float arc1 = (cos_n + 2.0 * h1 * sin(n) - cos(2.0 * h1 - n)) * 0.25;
     // XeGTAO's fudge: mix(|n_p|, 1, 0.05) tracks its ray-traced reference better.
-    visibility += mix(projected_length, 1.0, 0.05) * (arc0 + arc1);
+    float weight = mix(projected_length, 1.0, 0.05);
+    visible += weight * (arc0 + arc1);
+    // The same arcs with both horizons on the tangent plane, h = n -+ pi/2 (eq. 10).
+    open += weight * (cos_n + n * sin(n));
   }
-  visibility /= float(slices);
+  float visibility = u_exact_plane == 0 ? (fade + visible) / float(slices)
+                                        : fade / float(slices) + (open > 1e-6 ? visible / open : 1.0);
   visibility = max(kMinVisibility, pow(clamp(visibility, 0.0, 1.0), u_contrast));
   o_ao = clamp(1.0 - (1.0 - visibility) * u_intensity, 0.0, 1.0);
 }
