@@ -175,10 +175,27 @@ Scene scaled_scene(const std::string& name, float scale, float near_ratio) {
 // settings() at radius 0.5 with every parameter in scene units scaled with the scene: the
 // radius, and bitmask's thickness. SAO's bias is a share of the radius and the others' biases
 // are per unit depth or sines, so they stay.
-RenderSettings scaled_settings(Technique t, float scale, Blur blur = Blur::kNone) {
+RenderSettings scaled_settings(Technique t, float scale, Blur blur = Blur::kNone,
+                               bool exact_plane = false) {
   RenderSettings rs = settings(t, 0.5f * scale, blur);
   rs.params.bitmask.thickness *= scale;
+  rs.params.gtao.exact_plane = exact_plane;
   return rs;
+}
+
+// What the stress tests run: every technique at its defaults, and GTAO's other sampling path.
+struct Variant {
+  Technique t;
+  bool exact_plane;
+  std::string name() const {
+    return std::string(technique_name(t)) + (exact_plane ? " exact_plane" : "");
+  }
+};
+std::vector<Variant> stress_variants() {
+  std::vector<Variant> out;
+  for (Technique t : kAll) out.push_back({t, false});
+  out.push_back({Technique::kGtao, true});
+  return out;
 }
 
 // The stress matrix: every technique at scene scales 1e-3..1e4 and near planes from 1e-6
@@ -188,12 +205,12 @@ RenderSettings scaled_settings(Technique t, float scale, Blur blur = Blur::kNone
 TEST(RendererStress, ScalesAndNearPlanes) {
   for (float scale : {1e-3f, 1.0f, 1e4f}) {
     for (float near : {1e-6f, 1e-1f}) {
-      for (Technique t : kAll) {
+      for (const Variant& var : stress_variants()) {
         const Scene plane = scaled_scene("plane", scale, near);
         const Scene corner = scaled_scene("corner", scale, near);
-        const RenderSettings rs = scaled_settings(t, scale);
-        const std::string what = std::string(technique_name(t)) + " scale " +
-                                 std::to_string(scale) + " near " + std::to_string(near);
+        const RenderSettings rs = scaled_settings(var.t, scale, Blur::kNone, var.exact_plane);
+        const std::string what =
+            var.name() + " scale " + std::to_string(scale) + " near " + std::to_string(near);
         Stats open, crease;
         ASSERT_NO_THROW(open = geometry_stats(render(plane, 0, rs))) << what;
         ASSERT_NO_THROW(crease = geometry_stats(render(corner, 1, rs))) << what;
@@ -223,21 +240,22 @@ TEST(RendererStress, SameAoAtEveryScale) {
       {"corner", 0}, {"corner", 1}, {"village", 0}};
   const float exact[] = {std::ldexp(1.0f, -17), std::ldexp(1.0f, 17)};
   const float decimal[] = {1e-5f, 1e5f};
-  for (Technique t : kAll) {
+  for (const Variant& var : stress_variants()) {
     for (Blur blur : {Blur::kNone, Blur::kBilateral}) {
       double worst_exact = 0, worst_decimal = 0, worst_mean = 0, worst_share = 1;
+      const auto at = [&](float scale) {
+        return scaled_settings(var.t, scale, blur, var.exact_plane);
+      };
       for (const auto& [name, view] : views) {
-        const Images one = render(scaled_scene(name, 1, 0.01f), view, scaled_settings(t, 1, blur));
+        const Images one = render(scaled_scene(name, 1, 0.01f), view, at(1));
         const Stats at_one = geometry_stats(one);
-        ASSERT_LT(at_one.min, 0.9) << name << " " << technique_name(t) << ": nothing occluded";
+        ASSERT_LT(at_one.min, 0.9) << name << " " << var.name() << ": nothing occluded";
         for (float scale : {exact[0], exact[1], decimal[0], decimal[1]}) {
           const bool is_exact = scale == exact[0] || scale == exact[1];
-          const std::string what = std::string(technique_name(t)) + " " +
-                                   std::string(blur_name(blur)) + " " + name + " " +
-                                   std::to_string(view) + " scale " + std::to_string(scale);
+          const std::string what = var.name() + " " + std::string(blur_name(blur)) + " " + name +
+                                   " " + std::to_string(view) + " scale " + std::to_string(scale);
           Images scaled;
-          ASSERT_NO_THROW(scaled = render(scaled_scene(name, scale, 0.01f), view,
-                                          scaled_settings(t, scale, blur)))
+          ASSERT_NO_THROW(scaled = render(scaled_scene(name, scale, 0.01f), view, at(scale)))
               << what;
           const cv::Mat geometry = one.depth > 0;
           ASSERT_EQ(cv::countNonZero(geometry != (scaled.depth > 0)), 0) << what;
@@ -262,8 +280,8 @@ TEST(RendererStress, SameAoAtEveryScale) {
       std::printf(
           "[ measured ] %-8s %-9s max |dAO| exact scales %.3g; 1e-5, 1e5: max %.3g, mean %.3g, "
           "%.2f %% of pixels within 1e-4\n",
-          std::string(technique_name(t)).c_str(), std::string(blur_name(blur)).c_str(), worst_exact,
-          worst_decimal, worst_mean, 100 * worst_share);
+          var.name().c_str(), std::string(blur_name(blur)).c_str(), worst_exact, worst_decimal,
+          worst_mean, 100 * worst_share);
     }
   }
 }
