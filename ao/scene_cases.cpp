@@ -99,7 +99,7 @@ struct SceneCaseKind final : harness::CaseKind {
     } else {
       for (const rd::View& v : scene->views) views.push_back(v.name);
     }
-    if (std::ranges::count(images, "ao_float") && t.base.tolerance.gates.empty()) {
+    if (std::ranges::count(images, "ao_float") && t.base.tolerance.gates_for(true).empty()) {
       r.fail(t.table.source(),
              "ao_float is judged by metric gates only: give the tolerance one "
              "(e.g. rmse = { max = 0.01 })");

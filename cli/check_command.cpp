@@ -26,7 +26,7 @@ struct HarnessArgs {
   int jobs = 1, retries = 0;
   std::optional<double> max_mismatch;
   std::optional<int> max_channel_delta;
-  std::vector<std::string> gates;
+  std::vector<std::string> gates, float_gates, limits;
   std::optional<double> warn_mismatch;  // folder mode's warning tier
   std::vector<std::string> warn_gates;
   bool diff_all = false, no_reuse = false, platform = false, list = false, json = false;
@@ -44,17 +44,27 @@ void add_selection_options(CLI::App* cmd, HarnessArgs& a) {
   cmd->add_option("--expected", a.expected,
                   "folder mode: the accepted images, paired with --actual by relative path");
   cmd->add_option("--max-mismatch", a.max_mismatch,
-                  "folder mode: allowed Resemble mismatch % per image (default 0, unless only "
-                  "--gate is given)")
+                  "folder mode: allowed Resemble mismatch % per image (default 0); every other "
+                  "limit stays")
+      ->option_text("0..100")
       ->check(CLI::Range(0.0, 100.0));
-  cmd->add_option(
-         "--max-channel-delta", a.max_channel_delta,
-         "folder mode: the largest |new - golden| of any channel still passing (default 8, "
-         "any with --max-mismatch: Resemble's `less` mode alone ignores up to 16 levels)")
+  cmd->add_option("--max-channel-delta", a.max_channel_delta,
+                  "folder mode: the largest |new - golden| of any channel still passing "
+                  "(default 8; 255 lifts it)")
+      ->option_text("0..255")
       ->check(CLI::Range(0, 255));
+  cmd->add_option("--limit", a.limits,
+                  "folder mode: KEY=VALUE, any limit a suite's [tolerance] sets, e.g. "
+                  "max_mean_shift=1, shift_radius=1, allow_kind_change=true (repeatable)")
+      ->option_text("KEY=VALUE");
   cmd->add_option("--gate", a.gates,
                   "folder mode: METRIC.KEY=VALUE, as in `compare --gate` (e.g. flip.max_mean=0.02; "
-                  "repeatable); EXR images are judged by these");
+                  "repeatable), beside Resemble's gate, for every image")
+      ->option_text("METRIC.KEY=VALUE");
+  cmd->add_option("--float-gate", a.float_gates,
+                  "folder mode: METRIC.KEY=VALUE for float images only (EXR, HDR, float TIFF); "
+                  "without one they must be byte-identical")
+      ->option_text("METRIC.KEY=VALUE");
   cmd->add_option("--warn-max-mismatch", a.warn_mismatch,
                   "folder mode: a passing image above this Resemble mismatch % is a WARN (exit 0)")
       ->check(CLI::Range(0.0, 100.0));
@@ -88,24 +98,31 @@ hs::Suite load(const HarnessArgs& a) {
     throw std::invalid_argument(folders ? "give a suite file or --actual/--expected, not both"
                                         : "give a suite file, or --actual DIR --expected DIR");
   }
-  if (!folders && (a.max_mismatch || a.max_channel_delta || !a.gates.empty() || a.warn_mismatch ||
-                   !a.warn_gates.empty())) {
+  if (!folders &&
+      (a.max_mismatch || a.max_channel_delta || !a.gates.empty() || !a.float_gates.empty() ||
+       !a.limits.empty() || a.warn_mismatch || !a.warn_gates.empty())) {
     throw std::invalid_argument(
-        "--max-mismatch, --max-channel-delta, --gate and --warn-* are folder mode's; a suite "
-        "says its tolerances itself");
+        "--max-mismatch, --max-channel-delta, --limit, --gate, --float-gate and --warn-* are "
+        "folder mode's; a suite says its tolerances itself");
   }
   if (folders) {
     if (!a.goldens.empty() || a.platform || !a.tag.empty()) {
       throw std::invalid_argument(
           "folder mode takes no --goldens, --platform or --variant: --expected holds the goldens");
     }
+    // The one tolerance: each flag sets the limit it names, every other keeps its default.
     hs::Tolerance t;
-    t.max_mismatch_percent = a.max_mismatch.value_or(0);
-    t.max_channel_delta =
-        a.max_channel_delta.value_or(a.max_mismatch ? 255 : hs::kDefaultChannelDelta);
+    if (a.max_mismatch) t.max_mismatch_percent = *a.max_mismatch;
+    if (a.max_channel_delta) t.max_channel_delta = *a.max_channel_delta;
+    for (const std::string& spec : a.limits) {
+      const std::size_t eq = spec.find('=');
+      if (eq == std::string::npos) {
+        throw std::invalid_argument("--limit '" + hs::printable(spec) + "' is not KEY=VALUE");
+      }
+      comparison::set_limit(t, spec.substr(0, eq), spec.substr(eq + 1));
+    }
     for (const std::string& spec : a.gates) metric::add_gate_spec(t.gates, spec);
-    // As in a suite: gates alone replace Resemble's gate.
-    t.resemble = a.max_mismatch || a.max_channel_delta || t.gates.empty();
+    for (const std::string& spec : a.float_gates) metric::add_gate_spec(t.float_gates, spec);
     if (a.warn_mismatch) t.warn.max_mismatch_percent = *a.warn_mismatch;
     for (const std::string& spec : a.warn_gates) metric::add_gate_spec(t.warn.gates, spec);
     return hs::folder_suite(a.actual, a.expected, t);
@@ -133,7 +150,7 @@ void print_progress(const hs::CaseResult& r, int done, int total) {
     detail += "  " + v.image;
     // Resemble's mismatch and largest channel difference where its gate holds (or nothing else
     // was measured), then each gate, named by its region; nothing where nothing was measured.
-    if ((r.tolerance.resemble || v.outcomes.empty()) && !v.mismatch_text.empty()) {
+    if (r.tolerance.resemble && v.comparable && !v.mismatch_text.empty()) {
       detail += fmt::format(" {}%", v.mismatch_text);
     }
     // How much and where it differs most (idiff's "max error @ (x, y)"), float images too.

@@ -22,7 +22,6 @@
 #include "compare/band_compare.hpp"
 #include "compare/resemble.hpp"
 #include "compare/resemble_json.hpp"
-#include "compare/verdict.hpp"
 #include "image/image_file.hpp"
 #include "image/image_io.hpp"
 #include "image/png_layout.hpp"
@@ -36,7 +35,7 @@ namespace rs = aosuite::resemble;
 struct CompareArgs {
   std::string a, b, batch, diff, mode = "default", tolerance, error_type = "flat", error_color,
                                  ignore_color, canvas_alpha = "none";
-  std::vector<std::string> bounding_boxes, ignored_boxes, metrics, gates;
+  std::vector<std::string> bounding_boxes, ignored_boxes, metrics, gates, limits;
   std::string heatmap, flip_pooling = "exact";
   std::string large_image_threshold = "1200", return_early = "0", transparency = "1",
               threshold = "0", memory_limit = "1024";
@@ -152,19 +151,6 @@ rs::Options options_from(const CompareArgs& args) {
   return o;
 }
 
-// verdict::decide with Resemble.js's own rule as the default allowance:
-// mismatch <= --threshold on images of one size, and no channel limit.
-verdict::Verdict decide(const std::optional<rs::Result>& r, double threshold, const MetricRun& m) {
-  std::optional<verdict::ResembleFigures> figures;
-  if (r) {
-    figures = verdict::ResembleFigures{.same_size = r->same_dimensions,
-                                       .mismatch_percent = r->raw_mismatch_percentage,
-                                       .mismatch_text = r->mismatch_percentage};
-  }
-  return verdict::decide(figures ? &*figures : nullptr, {.max_mismatch_percent = threshold},
-                         m.outcomes);
-}
-
 // What the run may hold: both files, and when they are decoded whole, both images and what
 // the comparison allocates (the diff image and its PNG encoding among it).
 struct Budget {
@@ -206,54 +192,33 @@ void check_budget(const std::string& a, std::span<const unsigned char> bytes_a,
   }
 }
 
-// Resemble on decoded images; writes the diff image when asked.
-rs::Result compare_images(const RgbaImage& a, const RgbaImage& b, const rs::Options& o,
-                          const std::string& diff_path) {
-  rs::Result r = rs::compare(a, b, o);
-  if (!diff_path.empty()) {
-    if (r.diff.empty()) {
-      throw std::invalid_argument("no diff image: --return-early-threshold disables it");
-    }
-    write_png_rgba8(diff_path, r.diff);
-  }
-  return r;
-}
-
-rs::Result compare_files(const std::string& a, const std::string& b, rs::Options o,
-                         const std::string& diff_path, Budget budget) {
+// The one comparison of the two files (b, the second, against a, the reference) with
+// Resemble's options for its result; writes the diff image when asked. The memory budget is
+// checked before any PNG is decoded.
+comparison::Comparison compare_pair(const std::string& a, const std::string& b, rs::Options o,
+                                    const comparison::Tolerance& t, const std::string& diff_path,
+                                    bool want_heatmap, bool tool_pooling, Budget budget) {
   const MappedFile file_a(a, budget.bytes), file_b(b, budget.bytes);
   const auto bytes_a = file_a.bytes(), bytes_b = file_b.bytes();
-  for (const auto& [name, bytes] : {std::pair{&a, bytes_a}, std::pair{&b, bytes_b}}) {
-    if (is_exr(bytes)) {
-      throw FileError(
-          fmt::format("{}: an EXR image; Resemble.js compares PNGs (for EXR: "
-                      "--metric {})",
-                      *name, metric::names()));
-    }
-  }
   o.produce_diff = !diff_path.empty();
-  if (!is_png(bytes_a) || !is_png(bytes_b)) {
-    // Another format (JPEG, TIFF, WebP, ...): its pixels as a canvas holds them, compared as
-    // a PNG's are. No fast path: these files are decoded whole.
-    RgbaImage img_a, img_b;
-    side_by_side([&] { img_b = canvas_rgba8(decode_picture(bytes_b, b, budget.bytes)); },
-                 [&] { img_a = canvas_rgba8(decode_picture(bytes_a, a, budget.bytes)); });
-    return compare_images(img_a, img_b, o, diff_path);
+  if (o.produce_diff && o.return_early_threshold > 0) {
+    throw std::invalid_argument("no diff image: --return-early-threshold disables it");
   }
   const bool identical = std::ranges::equal(bytes_a, bytes_b);
-  if (identical && diff_path.empty()) {
-    // Byte-identical files cannot differ: check that the PNG decodes, skip its pixels.
-    return rs::compare_identical(check_png(bytes_a, a));
+  if (is_png(bytes_a) && is_png(bytes_b) && !(identical && !o.produce_diff)) {
+    check_budget(a, bytes_a, b, bytes_b, identical, o, budget);  // identical: a band at a time
   }
-  if (auto r = compare_png_bands(bytes_a, a, bytes_b, b, o)) return *std::move(r);
-  check_budget(a, bytes_a, b, bytes_b, identical, o, budget);
-  RgbaImage img_a, img_b;
-  if (identical) {
-    img_a = img_b = decode_png(bytes_a, a);  // the diff image still needs the pixels, once
-  } else {
-    side_by_side([&] { img_b = decode_png(bytes_b, b); }, [&] { img_a = decode_png(bytes_a, a); });
+  comparison::Options options;
+  options.want_diff = o.produce_diff, options.want_heatmap = want_heatmap;
+  options.resemble_options = &o, options.max_bytes = budget.bytes;
+  options.tool_pooling = tool_pooling;
+  comparison::Comparison c = comparison::run(comparison::Input::file(b, bytes_b),
+                                             comparison::Input::file(a, bytes_a), t, options);
+  if (o.produce_diff) {
+    if (c.diff.empty()) throw std::invalid_argument(a + ": no diff image for float images");
+    write_png_rgba8(diff_path, c.diff);
   }
-  return compare_images(img_a, img_b, o, diff_path);
+  return c;
 }
 
 Budget budget_from(const CompareArgs& args) {
@@ -261,68 +226,73 @@ Budget budget_from(const CompareArgs& args) {
   return {static_cast<std::uint64_t>(mib) * kMiB};
 }
 
-void print_human(const std::string& a, const std::string& b, const rs::Result& r, bool pass) {
-  fmt::print("{} vs {}: {}% mismatch ({} pixels)", a, b, r.mismatch_percentage, r.mismatch_count);
-  if (!r.same_dimensions) {
-    fmt::print(", sizes differ by {}x{}", r.width_difference, r.height_difference);
+void print_human(const std::string& a, const std::string& b, const comparison::Comparison& c) {
+  if (const std::optional<rs::Result>& r = c.resemble) {
+    fmt::print("{} vs {}: {}% mismatch ({} pixels)", a, b, r->mismatch_percentage,
+               r->mismatch_count);
+    if (!r->same_dimensions) {
+      fmt::print(", sizes differ by {}x{}", r->width_difference, r->height_difference);
+    }
+    if (r->mismatch_count) {
+      const rs::Bounds& d = r->diff_bounds;
+      fmt::print(", bounds x {}..{} y {}..{}", d.left, d.right, d.top, d.bottom);
+    }
+    if (c.comparable && !c.identical) {
+      fmt::print(", max channel delta {}, mean shift {:.3g}", c.max_channel_delta, c.mean_shift);
+    }
+    fmt::print(" -> {}\n", c.same() ? "same" : "different");
   }
-  if (r.mismatch_count) {
-    const rs::Bounds& d = r.diff_bounds;
-    fmt::print(", bounds x {}..{} y {}..{}", d.left, d.right, d.top, d.bottom);
-  }
-  fmt::print(" -> {}\n", pass ? "same" : "different");
+  for (const std::string& line : metric_lines(c)) fmt::print("{} vs {}: {}\n", a, b, line);
+  if (!c.same()) fmt::print("failed: {}\n", c.message());
 }
 
-// With gates, the JSON says what the exit status says: "verdict" ("same" or "different") and
-// the gates that do not hold. Without, it is Resemble.js's own, key for key.
-void add_verdict(const MetricPlan& plan, const verdict::Verdict& v, nlohmann::ordered_json& out) {
-  if (std::ranges::none_of(plan.metrics, [](const metric::Gates& g) { return !g.limits.empty(); }))
-    return;
-  out["verdict"] = v.pass ? "same" : "different";
-  out["failed_gates"] = v.failed;
+// The JSON: Resemble.js's own object, key for key, then the metrics measured, then what the
+// exit status says: "verdict" ("same" or "different") and the limits that failed.
+std::string json_line(const comparison::Comparison& c, nlohmann::ordered_json extra) {
+  for (const metric::Measurement& m : c.measured) extra[m.metric] = m.json();
+  extra["verdict"] = c.same() ? "same" : "different";
+  extra["failed_gates"] = c.failed;
+  return c.resemble ? rs::result_json(*c.resemble, extra) : extra.dump();
 }
 
-MetricPlan plan_of(const CompareArgs& args, const std::string& heatmap) {
-  MetricPlan plan = plan_metrics(args.metrics, args.gates, heatmap);
-  plan.flip_tool_pooling = args.flip_pooling == "tool";
-  return plan;
+comparison::Tolerance tolerance_of(const CompareArgs& args, const std::string& heatmap) {
+  return tolerance_from({.metrics = args.metrics,
+                         .gates = args.gates,
+                         .limits = args.limits,
+                         .heatmap = heatmap,
+                         .threshold = number_in(args.threshold, "--threshold", 0, 100),
+                         .mode = args.mode});
 }
 
-// Metrics first: their errors (sizes, kinds) come before Resemble writes its diff image.
 int run_single(const CompareArgs& args) {
-  const MetricPlan plan = plan_of(args, args.heatmap);
-  const double threshold = number_in(args.threshold, "--threshold", 0, 100);
-  const rs::Options options = options_from(args);
-  const Budget budget = budget_from(args);
-  RgbaImage heatmap;
-  const MetricRun m =
-      run_metrics(plan, args.a, args.b, budget.bytes, plan.heatmap.empty() ? nullptr : &heatmap);
-  std::optional<rs::Result> r;
-  if (plan.resemble) r = compare_files(args.a, args.b, options, args.diff, budget);
-  if (!plan.heatmap.empty()) write_png_rgba8(plan.heatmap, heatmap);
-  const verdict::Verdict v = decide(r, threshold, m);
-  if (args.json) {
-    nlohmann::ordered_json extra = m.json;
-    add_verdict(plan, v, extra);
-    fmt::print("{}\n", r ? rs::result_json(*r, extra.empty() ? nullptr : extra) : extra.dump());
-    return v.pass ? kExitSame : kExitDifferent;
+  const comparison::Tolerance t = tolerance_of(args, args.heatmap);
+  const comparison::Comparison c =
+      compare_pair(args.a, args.b, options_from(args), t, args.diff, !args.heatmap.empty(),
+                   args.flip_pooling == "tool", budget_from(args));
+  if (!args.heatmap.empty()) {
+    if (c.heatmap.empty()) {  // nothing comparable was measured: the verdict says why
+      fmt::print(stderr, "aosuite compare: {}: no heat map written ({})\n", args.heatmap,
+                 c.message());
+    } else {
+      write_png_rgba8(args.heatmap, c.heatmap);
+    }
   }
-  if (r) print_human(args.a, args.b, *r, decide(r, threshold, {}).pass);
-  for (const std::string& line : m.lines) fmt::print("{} vs {}: {}\n", args.a, args.b, line);
-  const verdict::Verdict gates = decide(std::nullopt, threshold, m);
-  if (!gates.pass) fmt::print("gates: {} -> different\n", gates.message());
-  return v.pass ? kExitSame : kExitDifferent;
+  if (args.json) {
+    fmt::print("{}\n", json_line(c, nlohmann::ordered_json::object()));
+  } else {
+    print_human(args.a, args.b, c);
+  }
+  return c.same() ? kExitSame : kExitDifferent;
 }
 
 // resemble-oracle's batch format: `A<TAB>B`, `A B`, or a JSON object with a, b, id, diff
 // (or diffRaw) and option keys. Blank lines and # comments are skipped.
 int run_batch(const CompareArgs& args) {
-  const double threshold = number_in(args.threshold, "--threshold", 0, 100);
+  const comparison::Tolerance t = tolerance_of(args, "");
   const rs::Options defaults = options_from(args);
   const Budget budget = budget_from(args);
   if (!args.heatmap.empty())
     throw std::invalid_argument("--heatmap writes one file: not with --batch");
-  const MetricPlan plan = plan_of(args, "");
   std::ifstream file;
   if (args.batch != "-") {
     file.open(args.batch);
@@ -354,14 +324,10 @@ int run_batch(const CompareArgs& args) {
       }
       if (a.empty() || b.empty()) throw std::invalid_argument("needs both 'a' and 'b'");
       extra["a"] = a, extra["b"] = b;
-      const MetricRun m = run_metrics(plan, a, b, budget.bytes, nullptr);
-      for (const auto& [key, value] : m.json.items()) extra[key] = value;
-      std::optional<rs::Result> r;
-      if (plan.resemble) r = compare_files(a, b, o, diff, budget);
-      const verdict::Verdict v = decide(r, threshold, m);
-      add_verdict(plan, v, extra);
-      fmt::print("{}\n", r ? rs::result_json(*r, extra) : extra.dump());
-      if (!v.pass) worst = std::max(worst, kExitDifferent);
+      const comparison::Comparison c =
+          compare_pair(a, b, o, t, diff, false, args.flip_pooling == "tool", budget);
+      fmt::print("{}\n", json_line(c, extra));
+      if (!c.same()) worst = std::max(worst, kExitDifferent);
     } catch (const std::exception& e) {
       extra["error"] = fmt::format("{}: line {}: {}", args.batch, line_no, e.what());
       fmt::print("{}\n", extra.dump());
@@ -379,8 +345,9 @@ void add_compare_command(CLI::App& app, int& rc) {
       "compare",
       "Compare two images exactly as Resemble.js 5.0.0 does, and measure FLIP, SSIM, RMSE or\n"
       "PSNR (--metric) at the images' full precision (8- or 16-bit, float).\n"
-      "Exit status: 0 same (mismatch <= --threshold and same size, every --gate holds),\n"
-      "1 different, 2 error. Metrics without a --gate are measured, not judged.");
+      "Exit status: 0 same under the one tolerance (docs/compare.md: mismatch <= --threshold,\n"
+      "channel delta <= 8, mean shift <= 0.5, mean delta <= 0.25 levels, same size and kind,\n"
+      "every --gate), 1 different, 2 error. --metric alone measures without gating.");
   cmd->add_option("a", args->a, "first image (PNG, EXR, JPEG, TIFF, WebP, HDR, TGA, BMP)");
   cmd->add_option("b", args->b, "second image");
   cmd->add_option("--batch", args->batch,
@@ -411,10 +378,20 @@ void add_compare_command(CLI::App& app, int& rc) {
                   "what a canvas does to translucent pixels: none|chromium|node-canvas")
       ->capture_default_str();
   cmd->add_option("--metric", args->metrics,
-                  fmt::format("resemble (the default), {}; repeatable", metric::names()));
+                  fmt::format("measure these beside Resemble's comparison: {} (comma-separated "
+                              "or repeated)",
+                              metric::names()))
+      ->option_text("NAME[,NAME...]");
   cmd->add_option("--gate", args->gates,
-                  "METRIC.KEY=VALUE, all must hold: max/min (the metric's main value), "
-                  "max_STAT/min_STAT, allow_nonfinite=true; e.g. flip.max_mean=0.02 (repeatable)");
+                  "METRIC.KEY=VALUE, all must hold beside Resemble's gate: max/min (the "
+                  "metric's main value), max_STAT/min_STAT, allow_nonfinite=true; e.g. "
+                  "flip.max_mean=0.02 (repeatable)")
+      ->option_text("METRIC.KEY=VALUE");
+  cmd->add_option("--limit", args->limits,
+                  "KEY=VALUE, any limit of the one tolerance as a suite's [tolerance] names it: "
+                  "max_channel_delta=255, max_mean_shift=1, shift_radius=1, "
+                  "allow_kind_change=true (repeatable)")
+      ->option_text("KEY=VALUE");
   cmd->add_option("--heatmap", args->heatmap, "write FLIP's error map (magma) as PNG");
   cmd->add_option("--flip-pooling", args->flip_pooling,
                   "exact (double sums) or tool: FLIP's mean and weighted percentiles summed in "
@@ -422,8 +399,9 @@ void add_compare_command(CLI::App& app, int& rc) {
       ->check(CLI::IsMember({"exact", "tool"}))
       ->capture_default_str();
   cmd->add_option("--diff", args->diff, "write the diff image (Resemble's raw buffer) as PNG");
-  cmd->add_option("--threshold", args->threshold, "largest mismatch % still judged the same")
-      ->capture_default_str();
+  cmd->add_option("--threshold", args->threshold,
+                  "largest Resemble mismatch % still judged the same (max_mismatch_percent)")
+      ->option_text("0..100 (default 0)");
   cmd->add_option("--memory-limit", args->memory_limit,
                   "MiB the comparison may hold: files, decoded images, diff image")
       ->capture_default_str();

@@ -16,6 +16,7 @@ install(TARGETS aosuite_api EXPORT aosuiteTargets
         LIBRARY DESTINATION lib
         INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 install(FILES ${PROJECT_SOURCE_DIR}/include/aosuite/aosuite.hpp
+              ${PROJECT_SOURCE_DIR}/include/aosuite/gtest.hpp
         DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/aosuite)
 install(EXPORT aosuiteTargets NAMESPACE aosuite:: DESTINATION lib/cmake/aosuite)
 write_basic_package_version_file(${PROJECT_BINARY_DIR}/aosuiteConfigVersion.cmake

@@ -14,15 +14,19 @@ namespace aosuite {
 
 // Where `library` is: beside the executable, else in ../lib/aosuite from it (where
 // `cmake --install` puts it), else in aosuite/ beside the shared library holding this code
-// (libaosuite.so, find_package(aosuite), in another program). The executable's own folder is
-// tried first, so a build folder never picks up an installed copy.
+// (libaosuite.so, find_package(aosuite), in another program), else beside that library (a
+// build folder's libaosuite.so, linked by another program's tests). The executable's own
+// folder is tried first, so a build folder never picks up an installed copy.
 inline std::filesystem::path sibling_library_path(const char* library) {
   namespace fs = std::filesystem;
   const fs::path bin = fs::read_symlink("/proc/self/exe").parent_path();
   std::vector<fs::path> places{bin / library, bin / ".." / "lib" / "aosuite" / library};
   Dl_info self{};
-  if (dladdr(reinterpret_cast<const void*>(&sibling_library_path), &self) && self.dli_fname)
-    places.push_back(fs::path(self.dli_fname).parent_path() / "aosuite" / library);
+  if (dladdr(reinterpret_cast<const void*>(&sibling_library_path), &self) && self.dli_fname) {
+    const fs::path holder = fs::path(self.dli_fname).parent_path();
+    places.push_back(holder / "aosuite" / library);
+    places.push_back(holder / library);
+  }
   std::error_code ec;
   for (const fs::path& p : places)
     if (fs::exists(p, ec)) return p.lexically_normal();

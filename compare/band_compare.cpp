@@ -101,11 +101,9 @@ std::uint32_t band_rows_for(std::uint32_t width) {
                                  static_cast<std::uint32_t>(kBandBytes / (std::size_t{width} * 4)));
 }
 
-std::optional<resemble::Result> compare_png_bands(std::span<const unsigned char> a,
-                                                  const std::string& name_a,
-                                                  std::span<const unsigned char> b,
-                                                  const std::string& name_b,
-                                                  const resemble::Options& options) {
+std::optional<resemble::Result> compare_png_bands(
+    std::span<const unsigned char> a, const std::string& name_a, std::span<const unsigned char> b,
+    const std::string& name_b, const resemble::Options& options, comparison::ChannelStats* stats) {
   const auto start = std::chrono::steady_clock::now();
   // The files' pixels are what is compared only without a canvas model.
   const std::optional<std::array<int, 4>> min_delta = resemble::count_only_thresholds(options);
@@ -131,11 +129,16 @@ std::optional<resemble::Result> compare_png_bands(std::span<const unsigned char>
 
   Rendezvous meet(bands);
   std::array<MismatchTally, 2> tally;
+  std::array<comparison::ChannelStats, 2> channel_stats;
   auto decode = [&](int i) {
     auto count = [&](std::uint32_t band) {
       const std::uint32_t y0 = band * band_rows, rows = std::min(band_rows, h - y0);
       tally[i].merge(count_band(slot(0, band), slot(1, band), static_cast<int>(w),
                                 static_cast<int>(rows), static_cast<int>(y0), *min_delta));
+      if (stats) {
+        channel_stats[std::size_t(i)].add(slot(0, band), slot(1, band), std::uint64_t(w) * rows,
+                                          std::uint64_t(w) * y0);
+      }
     };
     try {
       rings[std::size_t(i)] = PixelBuffer(slot_bytes[std::size_t(i)] * kSlots);
@@ -157,6 +160,7 @@ std::optional<resemble::Result> compare_png_bands(std::span<const unsigned char>
   }
   meet.rethrow();
   tally[0].merge(tally[1]);
+  if (stats) stats->merge(channel_stats[0]), stats->merge(channel_stats[1]);
   const ImageSize size{static_cast<int>(w), static_cast<int>(h)};
   return resemble::result_from_tally(tally[0], size, size, start);
 }

@@ -10,6 +10,7 @@
 #include <span>
 #include <string>
 
+#include "compare/channel_stats.hpp"
 #include "compare/resemble.hpp"
 
 namespace aosuite {
@@ -23,11 +24,13 @@ std::uint32_t band_rows_for(std::uint32_t width);
 // decodes them whole.
 // analysis_ms covers the decoding too: here it is one pass with the counting.
 // Throws FileError, naming the file, for a corrupt one (either file when both are: the
-// first error found stops both decoders).
+// first error found stops both decoders). With `stats`, the bands' channel statistics of b
+// (actual) against a (expected) are added to it while they are in cache.
 std::optional<resemble::Result> compare_png_bands(std::span<const unsigned char> a,
                                                   const std::string& name_a,
                                                   std::span<const unsigned char> b,
                                                   const std::string& name_b,
-                                                  const resemble::Options& options);
+                                                  const resemble::Options& options,
+                                                  comparison::ChannelStats* stats = nullptr);
 
 }  // namespace aosuite

@@ -41,16 +41,22 @@ Verdict decide(const ResembleFigures* resemble, const ResembleAllowance& allowed
     if (!resemble->same_size) {
       v.failed.push_back("the images differ in size");
     } else {
-      const bool mismatch = resemble->mismatch_percent > allowed.max_mismatch_percent;
-      const bool delta = resemble->max_channel_delta > allowed.max_channel_delta;
-      if (mismatch || delta) {
-        std::string why = fmt::format("mismatch {}% (allowed {}%)", resemble->mismatch_text,
-                                      allowed.max_mismatch_percent);
-        if (allowed.max_channel_delta < 255) {
-          why += fmt::format(", max channel delta {} (allowed {})", resemble->max_channel_delta,
-                             allowed.max_channel_delta);
-        }
-        v.failed.push_back(std::move(why));
+      // Each limit that failed, and only those.
+      if (resemble->mismatch_percent > allowed.max_mismatch_percent) {
+        v.failed.push_back(fmt::format("mismatch {}% (allowed {}%)", resemble->mismatch_text,
+                                       allowed.max_mismatch_percent));
+      }
+      if (resemble->max_channel_delta > allowed.max_channel_delta) {
+        v.failed.push_back(fmt::format("max channel delta {} (allowed {})",
+                                       resemble->max_channel_delta, allowed.max_channel_delta));
+      }
+      if (resemble->mean_shift > allowed.max_mean_shift) {
+        v.failed.push_back(fmt::format("mean shift {:.3g} levels (allowed {:g})",
+                                       resemble->mean_shift, allowed.max_mean_shift));
+      }
+      if (resemble->mean_delta > allowed.max_mean_delta) {
+        v.failed.push_back(fmt::format("mean delta {:.3g} levels (allowed {:g})",
+                                       resemble->mean_delta, allowed.max_mean_delta));
       }
       budgets(*resemble, allowed, v.failed);
     }

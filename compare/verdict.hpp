@@ -23,6 +23,7 @@ struct ResembleAllowance {
   int max_channel_delta = 255;  // 255: any (Resemble.js itself has no such limit)
   int min_channel_delta = 0;
   long long min_differing_pixels = 0, max_differing_pixels = -1;  // -1: any number
+  double max_mean_shift = 255, max_mean_delta = 255;              // 255: any
 };
 
 // What Resemble's comparison found (a channel delta of -1: not measured).
@@ -31,7 +32,8 @@ struct ResembleFigures {
   double mismatch_percent = 0;
   std::string mismatch_text;  // Resemble's two-decimal misMatchPercentage
   int max_channel_delta = -1;
-  long long differing_pixels = -1;  // pixels with any channel changed; -1: not counted
+  long long differing_pixels = -1;        // pixels with any channel changed; -1: not counted
+  double mean_shift = 0, mean_delta = 0;  // comparison::ChannelStats' figures
 };
 
 struct Verdict {

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "compare/comparison.hpp"
 #include "harness/suite.hpp"
 #include "image/rgba_image.hpp"
 
@@ -24,64 +25,34 @@ Status worst(Status a, Status b);  // the more severe; `a` on a tie
 bool awaits_approval(Status s);
 Status parse_status(std::string_view name);
 
-// Where the render differs most from its golden (idiff's "max error @ (x, y)"): the largest
-// |new - golden| of any sample (0..255 for 8-bit images, the samples' own unit for float ones)
-// and the first pixel, row-major, that holds it; x = y = -1 where nothing differs.
-struct LargestDifference {
-  double value = 0;
-  int x = -1, y = -1;
-  std::string text() const;  // "12 @ (3, 4)", "0.0312 @ (3, 4)"; "" where nothing differs
-};
+using comparison::LargestDifference;
 
-struct ImageVerdict {
+// One image's verdict: the comparison against the accepted golden closest to it (every figure,
+// measurement and limit's outcome; nothing when it is NEW or could not be judged), and what the
+// harness adds: the status, the golden, and why.
+struct ImageVerdict : comparison::Comparison {
   std::string image;  // no_ao | with_ao | ao_only | ao_float, or an image case's own
   Status status = Status::kError;
-  bool identical = false;          // byte-identical to the golden: nothing was compared
-  double mismatch_percent = 0;     // Resemble's rawMisMatchPercentage against `golden`
-  std::string mismatch_text;       // its misMatchPercentage ("0.42")
-  int max_channel_delta = 0;       // largest |new - golden| over unignored pixels
-  long long differing_pixels = 0;  // unignored pixels with any channel changed
-  LargestDifference largest;       // over the unignored pixels; measured images only
-  std::filesystem::path golden;    // the accepted golden closest to the render
-  std::string message;             // why it failed or could not be judged
-  // A passing, measured (not byte-identical) image's budgets it uses under a tenth of
-  // (verdict::stale_budgets): tolerances to tighten.
-  std::vector<std::string> stale;
-  RgbaImage diff;  // Resemble's diff image, when asked and not passing
-  // With a diff: the pixels the tolerance ignored (ignored_pixels()), for the report's overlay;
-  // empty when it ignores none.
-  std::vector<std::uint8_t> ignored;
-  // The tolerance's metric gates: every gated metric's values, and each gate's outcome (value,
-  // limit, margin). Empty for identical images: nothing was measured.
-  std::vector<metric::Measurement> measured;
-  std::vector<metric::Outcome> outcomes;
-  RgbaImage heatmap;  // FLIP's error map, when FLIP is gated, asked for and not passing
+  std::filesystem::path golden;  // the accepted golden closest to the render
+  std::string message;           // why it failed, warned, is new or could not be judged
   // The golden's content hash, so what was measured against it is not mistaken for numbers
   // against a golden blessed since (`tolerances suggest`); empty when it could not be read.
   std::string golden_hash;
-  // The render was measured against the golden: identical, or Resemble's numbers and every gate's
-  // value are the render's. False where no tolerance could make it pass (another size or kind).
-  bool comparable = false;
 };
 
-// The pixels a tolerance's ignore boxes (inclusive corners, clipped to the frame) and mask (not
-// black) take out of a width x height 8-bit comparison: 1 ignored, row-major; empty when it has
-// neither. Throws std::runtime_error naming a mask of another size.
-std::vector<std::uint8_t> ignored_pixels(const Tolerance& t, int width, int height);
+using comparison::ignored_pixels;
 
 // A golden's bytes as ImageVerdict::golden_hash records them.
 std::string golden_hash(std::span<const unsigned char> bytes);
 
-// Judges a render (its file's bytes, and for PNGs their decoded RGBA; `render` is empty for
-// float images) against `goldens` (accepted variants; the case passes if any does) under
-// Resemble's gate and the metric gates. Missing goldens give kNew; an unreadable golden or
-// variant gives kError naming it, even when another variant passes; a golden of another size
-// or kind kFail with both named. A float image without metric gates is compared byte for byte.
-// `counted` (width * height flags; foreground_only's geometry pixels) restricts Resemble's
-// mismatch percentage and every metric to the flagged pixels.
-using Counted = std::vector<std::uint8_t>;
+// Judges a render (its file's bytes) against `goldens` (accepted variants; the case passes if
+// any does) by the one comparison (comparison::run). Missing goldens give kNew; an unreadable
+// golden or variant gives kError naming it, even when another variant passes. `counted`
+// (width * height flags; foreground_only's geometry pixels) restricts the figures and every
+// metric to the flagged pixels.
+using comparison::Counted;
 ImageVerdict judge(std::string_view image, std::span<const unsigned char> render_bytes,
-                   const RgbaImage& render, const std::vector<std::filesystem::path>& goldens,
-                   const Tolerance& tolerance, bool want_diff, const Counted* counted = nullptr);
+                   const std::vector<std::filesystem::path>& goldens, const Tolerance& tolerance,
+                   bool want_diff, const Counted* counted = nullptr);
 
 }  // namespace aosuite::harness

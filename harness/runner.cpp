@@ -370,8 +370,8 @@ void judge_case(const Suite& suite, const Case& c, const std::string& platform, 
   for (std::size_t i = 0; i < c.images.size(); ++i) {
     const std::string& name = c.images[i];
     const std::string ext = ext_of(c, name);
-    ImageVerdict v = judge(name, images.bytes.at(name), pixels(images, c, name, case_dir),
-                           goldens[i], c.tolerance, true, counted ? &*counted : nullptr);
+    ImageVerdict v = judge(name, images.bytes.at(name), goldens[i], c.tolerance, true,
+                           counted ? &*counted : nullptr);
     if (v.status == Status::kNew)
       v.message += " at " + printable(bless_target(suite, c, name, "", "").string());
     const bool show = v.status == Status::kFail || v.status == Status::kWarn || o.diff_all;

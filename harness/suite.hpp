@@ -13,61 +13,13 @@
 
 #include "compare/metric.hpp"
 #include "compare/resemble.hpp"
+#include "compare/tolerance.hpp"
 
 namespace aosuite::harness {
 
-// A tolerance class of a region map: the golden's <image>.regions.png beside it paints each
-// pixel with a class's colour (black: no class); the class's metric gates hold over its pixels,
-// and the tolerance's own metric gates over the unpainted ones.
-struct Region {
-  std::string name;
-  std::array<int, 3> color{};  // R, G, B, not all 0
-  std::vector<metric::Gates> gates;
-};
-
-inline constexpr int kDefaultChannelDelta = 8;
-
-// The warning tier, `[tolerance.warn]` (idiff's -warn beside -fail): tighter limits that a
-// passing image may exceed and still pass, with a WARN status that exits 0, so a drift is seen
-// before it fails. Only the limits it names are checked; its metric gates judge the whole image
-// (with regions, the unpainted pixels), under the tolerance's Resemble mode.
-struct WarnLimits {
-  double max_mismatch_percent = 100;  // 100, 255, -1: not checked
-  int max_channel_delta = 255;
-  long long max_differing_pixels = -1;
-  std::vector<metric::Gates> gates;
-  bool resemble() const {
-    return max_mismatch_percent < 100 || max_channel_delta < 255 || max_differing_pixels >= 0;
-  }
-  bool empty() const { return !resemble() && gates.empty(); }
-};
-
-// How far a render may stray from its golden and still pass: Resemble's gate, the metrics'
-// gates, or both (all must hold).
-struct Tolerance {
-  // Resemble's gate (mode, max_mismatch_percent, max_channel_delta) holds; off when a suite
-  // gives only metric gates. PNG images only.
-  bool resemble = true;
-  std::vector<metric::Gates> gates;  // e.g. flip = { max_mean = 0.02 }, rmse = { max = 0.01 }
-  // Percentages and means over the pixels the case's "foreground" image marks (a rendered
-  // scene's geometry), so sky does not dilute them. Only for kinds that keep such an image.
-  bool foreground_only = false;
-  std::vector<Region> regions;                  // empty: no region map is read
-  resemble::Mode mode = resemble::Mode::kLess;  // any Resemble.js mode
-  double max_mismatch_percent = 0;              // Resemble's rawMisMatchPercentage, inclusive
-  // Largest |new - golden| of any RGBA channel. Resemble's default `less` mode ignores up to 16
-  // levels per channel, so without a budget a global shading change of 12 levels passes: 8
-  // unless the tolerance names a mismatch percentage alone (then any, as Resemble's gate).
-  int max_channel_delta = kDefaultChannelDelta;
-  // Two-sided budgets (verdict::ResembleAllowance): `channel_delta = [min, max]`,
-  // `differing_pixels = [min, max]` or `max_differing_pixels = N`.
-  int min_channel_delta = 0;
-  long long min_differing_pixels = 0, max_differing_pixels = -1;  // -1: any
-  std::vector<resemble::Box> ignore;  // left, top, right, bottom, in pixels
-  std::filesystem::path
-      mask;  // pixels where this PNG is not black (any of R, G, B > 0) are ignored
-  WarnLimits warn;
-};
+using comparison::Region;
+using comparison::Tolerance;
+using comparison::WarnLimits;
 
 // The region map beside a golden: <image>.regions.png in its folder.
 std::filesystem::path region_map(const std::filesystem::path& golden, std::string_view image);

@@ -138,63 +138,66 @@ WarnLimits read_warn(const Reader& r, const toml::node& n) {
   return w;
 }
 
+// A scalar TOML value as set_limit reads it.
+std::string limit_text(const toml::node& n) {
+  if (const auto* s = n.as_string()) return s->get();
+  if (const auto* b = n.as_boolean()) return b->get() ? "true" : "false";
+  if (const auto* i = n.as_integer()) return std::to_string(i->get());
+  if (const auto* f = n.as_floating_point()) return fmt::format("{}", f->get());
+  return "(not a value)";
+}
+
+// [tolerance]: the one tolerance (compare/tolerance.hpp). Each key sets the limit it names
+// and leaves every other at its default: metric gates sit beside Resemble's gate, and a
+// mismatch percentage keeps the channel limit.
 void read_tolerance(const Reader& r, const fs::path& dir, const toml::node& n, Tolerance& t) {
   const toml::table& tbl = r.table(n, "tolerance");
-  static constexpr std::string_view kResembleKeys[] = {
-      "mode",          "max_mismatch_percent", "max_channel_delta",
-      "channel_delta", "differing_pixels",     "ignore",
-      "mask",          "foreground_only"};
-  bool resemble_named = false, metric_named = false;
+  static constexpr std::string_view kOwnKeys[] = {
+      "channel_delta",   "differing_pixels", "ignore", "mask",
+      "foreground_only", "regions",          "warn",   "float"};
   for (const auto& [key, value] : tbl) {
-    if (std::find(std::begin(kResembleKeys), std::end(kResembleKeys), key.str()) !=
-        std::end(kResembleKeys)) {
-      resemble_named |=
-          key.str() != "ignore" && key.str() != "mask" && key.str() != "foreground_only";
-      if (key.str() == "foreground_only") t.foreground_only = r.boolean(value, "foreground_only");
+    if (std::ranges::find(kOwnKeys, key.str()) != std::end(kOwnKeys)) continue;
+    if (value.is_table() || value.is_array()) {
+      const metric::Metric* m = nullptr;
+      try {
+        m = &metric::find(key.str());
+      } catch (const std::invalid_argument&) {
+        r.fail(value.source(),
+               fmt::format("unknown key '{}' (tolerance keys: {}, channel_delta, "
+                           "differing_pixels, ignore, mask, foreground_only, regions, warn, "
+                           "float, and the metrics {})",
+                           printable(key.str()), comparison::kLimitKeys, metric::names()));
+      }
+      std::erase_if(t.gates, [&](const metric::Gates& g) { return g.metric == m; });
+      t.gates.push_back(read_gates(r, *m, value));
       continue;
     }
-    if (key.str() == "regions") {
-      t.regions = read_regions(r, value);
-      continue;
-    }
-    if (key.str() == "warn") {
-      t.warn = read_warn(r, value);
-      continue;
-    }
-    const metric::Metric* m = nullptr;
     try {
-      m = &metric::find(key.str());
-    } catch (const std::invalid_argument&) {
-      r.fail(value.source(), fmt::format("unknown key '{}' (tolerance keys: mode, "
-                                         "max_mismatch_percent, max_channel_delta, channel_delta, "
-                                         "differing_pixels, ignore, mask, foreground_only, "
-                                         "regions, warn, and the metrics {})",
-                                         printable(key.str()), metric::names()));
-    }
-    std::erase_if(t.gates, [&](const metric::Gates& g) { return g.metric == m; });
-    t.gates.push_back(read_gates(r, *m, value));
-    metric_named = true;
-  }
-  // Metric gates alone replace Resemble's; with Resemble's keys beside them, both hold.
-  if (metric_named) t.resemble = resemble_named;
-  if (resemble_named) t.resemble = true;
-  if (const toml::node* m = tbl.get("mode")) {
-    try {
-      t.mode = resemble::parse_mode(r.string(*m, "mode"));
+      comparison::set_limit(t, key.str(), limit_text(value));
     } catch (const std::invalid_argument& e) {
-      r.fail(m->source(), e.what());
+      r.fail(value.source(), fmt::format("{} (tolerance keys: {}, channel_delta, "
+                                         "differing_pixels, ignore, mask, foreground_only, "
+                                         "regions, warn, float, and the metrics {})",
+                                         e.what(), comparison::kLimitKeys, metric::names()));
     }
   }
-  if (const toml::node* m = tbl.get("max_mismatch_percent")) {
-    t.max_mismatch_percent = r.number(*m, "max_mismatch_percent");
-    if (!(t.max_mismatch_percent >= 0 && t.max_mismatch_percent <= 100)) {
-      r.fail(m->source(), "max_mismatch_percent must be 0..100");
+  if (const toml::node* m = tbl.get("foreground_only"))
+    t.foreground_only = r.boolean(*m, "foreground_only");
+  if (const toml::node* m = tbl.get("regions")) t.regions = read_regions(r, *m);
+  if (const toml::node* m = tbl.get("warn")) t.warn = read_warn(r, *m);
+  if (const toml::node* f = tbl.get("float")) {
+    // [tolerance.float]: metric gates for float images only.
+    for (const auto& [key, value] : r.table(*f, "float")) {
+      const metric::Metric* m = nullptr;
+      try {
+        m = &metric::find(key.str());
+      } catch (const std::invalid_argument&) {
+        r.fail(value.source(), fmt::format("unknown metric '{}' in [tolerance.float] ({})",
+                                           printable(key.str()), metric::names()));
+      }
+      std::erase_if(t.float_gates, [&](const metric::Gates& g) { return g.metric == m; });
+      t.float_gates.push_back(read_gates(r, *m, value));
     }
-  }
-  if (const toml::node* m = tbl.get("max_channel_delta")) {
-    t.max_channel_delta = r.integer(*m, "max_channel_delta", 0, 255);
-  } else if (tbl.get("max_mismatch_percent") && !tbl.get("channel_delta")) {
-    t.max_channel_delta = 255;  // a percentage alone: that many pixels may change by any amount
   }
   if (const toml::node* m = tbl.get("channel_delta")) {
     if (tbl.get("max_channel_delta")) {

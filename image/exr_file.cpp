@@ -81,12 +81,13 @@ FloatImage decode_exr(std::span<const unsigned char> bytes, const std::string& n
   return image;
 }
 
-void write_exr(const std::filesystem::path& path, int width, int height, const float* pixels) {
+void write_exr(const std::filesystem::path& path, int width, int height, const float* pixels,
+               int channels) {
   WriteExr* write = exr_entry<WriteExr>("aosuite_write_exr", path.string(), "write");
   const std::filesystem::path tmp =
       path.parent_path() / fmt::format(".{}.tmp.exr", path.filename().string());
   char err[512] = {};
-  if (write(tmp.c_str(), width, height, pixels, err, sizeof err) != 0) {
+  if (write(tmp.c_str(), width, height, channels, pixels, err, sizeof err) != 0) {
     std::error_code ignored;
     std::filesystem::remove(tmp, ignored);
     throw FileError(fmt::format("{}: cannot write EXR: {}", path.string(), one_line(err)));

@@ -18,7 +18,9 @@ namespace aosuite {
 FloatImage decode_exr(std::span<const unsigned char> bytes, const std::string& name,
                       std::uint64_t max_bytes = UINT64_MAX);
 
-// Writes a one-channel float image as EXR via a temporary file and rename(2).
-void write_exr(const std::filesystem::path& path, int width, int height, const float* pixels);
+// Writes a float image of 1 (Y) or 3 (R, G, B) interleaved channels as EXR via a temporary
+// file and rename(2).
+void write_exr(const std::filesystem::path& path, int width, int height, const float* pixels,
+               int channels = 1);
 
 }  // namespace aosuite

@@ -72,13 +72,21 @@ std::string channel_names(const Imf::ChannelList& list) {
 
 // The entry points' contracts are in image/exr_library.hpp.
 extern "C" __attribute__((visibility("default"))) int aosuite_write_exr(
-    const char* path, int width, int height, const float* pixels, char* err, std::size_t err_len) {
+    const char* path, int width, int height, int channels, const float* pixels, char* err,
+    std::size_t err_len) {
   try {
     Imf::Header header(width, height);
-    header.channels().insert("Y", Imf::Channel(Imf::FLOAT));
     Imf::FrameBuffer fb;
-    fb.insert("Y", Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(const_cast<float*>(pixels)),
-                              sizeof(float), sizeof(float) * std::size_t(width)));
+    static constexpr const char* kGrey[] = {"Y"};
+    static constexpr const char* kColour[] = {"R", "G", "B"};
+    const std::size_t n = channels == 3 ? 3 : 1;
+    for (std::size_t c = 0; c < n; ++c) {
+      const char* name = n == 3 ? kColour[c] : kGrey[0];
+      header.channels().insert(name, Imf::Channel(Imf::FLOAT));
+      fb.insert(name, Imf::Slice(Imf::FLOAT,
+                                 reinterpret_cast<char*>(const_cast<float*>(pixels + c)),
+                                 sizeof(float) * n, sizeof(float) * n * std::size_t(width)));
+    }
     Imf::OutputFile out(path, header);
     out.setFrameBuffer(fb);
     out.writePixels(height);

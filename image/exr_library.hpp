@@ -6,10 +6,10 @@
 
 extern "C" {
 
-// Writes a one-channel float image (channel Y) to `path`. 0 on success, else 1 with the reason
-// in err.
-int aosuite_write_exr(const char* path, int width, int height, const float* pixels, char* err,
-                      std::size_t err_len);
+// Writes a float image of one channel (Y) or three (R, G, B, interleaved) to `path`. 0 on
+// success, else 1 with the reason in err.
+int aosuite_write_exr(const char* path, int width, int height, int channels, const float* pixels,
+                      char* err, std::size_t err_len);
 
 // Reads an EXR held in memory as float R, G, B (or Y alone), interleaved, over its data window.
 // `allocate(user, width, height, channels)` returns room for width * height * channels

@@ -127,8 +127,13 @@ TEST_F(CliCompare, SameIsZeroDifferentIsOne) {
   const Outcome r = run(dir_, path("a.png") + " " + path("b.png"));
   EXPECT_EQ(r.rc, 1);
   EXPECT_NE(r.out.find("different"), std::string::npos);
-  // one pixel of 600 is 0.1666 %: within a 0.2 % threshold
-  EXPECT_EQ(run(dir_, path("a.png") + " " + path("b.png") + " --threshold 0.2").rc, 0);
+  // one pixel of 600 is 0.1666 %: within a 0.2 % threshold, but the threshold names only the
+  // mismatch: the channel limit stays in force until it is lifted by name
+  EXPECT_EQ(run(dir_, path("a.png") + " " + path("b.png") + " --threshold 0.2").rc, 1);
+  EXPECT_EQ(run(dir_, path("a.png") + " " + path("b.png") +
+                          " --threshold 0.2 --limit max_channel_delta=255")
+                .rc,
+            0);
   EXPECT_EQ(run(dir_, path("a.png") + " " + path("small.png") + " --threshold 100").rc, 1);
 }
 
@@ -137,9 +142,11 @@ TEST_F(CliCompare, JsonHasResemblesKeysInOrder) {
   const auto j = nlohmann::ordered_json::parse(r.out);
   std::vector<std::string> keys;
   for (const auto& [k, v] : j.items()) keys.push_back(k);
+  // Resemble.js's own keys first, in its order; then what the exit status says.
   EXPECT_EQ(keys, (std::vector<std::string>{"misMatchPercentage", "rawMisMatchPercentage",
                                             "isSameDimensions", "dimensionDifference", "diffBounds",
-                                            "analysisTime"}));
+                                            "analysisTime", "verdict", "failed_gates"}));
+  EXPECT_EQ(j["verdict"], "different");
   EXPECT_EQ(j["misMatchPercentage"], "0.17");
   EXPECT_EQ(j["diffBounds"].dump(), R"({"top":5,"left":7,"bottom":5,"right":7})");
 }
@@ -210,9 +217,13 @@ TEST_F(CliCompare, BadOptionsAreOneLineAndExitTwo) {
   const Outcome one = run(dir_, path("a.png"));
   EXPECT_EQ(one.rc, 2);
   EXPECT_EQ(one.err, "aosuite compare: needs two images, or --batch FILE\n");
-  // With a mode the tolerance is Resemble's: colour differences under it match.
-  EXPECT_EQ(run(dir_, path("a.png") + " " + path("b.png") +
-                          R"( --mode nothing --tolerance '{"red":255}')")
+  // With a mode the tolerance is Resemble's: colour differences under it match Resemble's count,
+  // and the channel limits, which it does not name, still hold until lifted by name.
+  const std::string tolerated =
+      path("a.png") + " " + path("b.png") + R"( --mode nothing --tolerance '{"red":255}')";
+  EXPECT_EQ(run(dir_, tolerated).rc, 1);
+  EXPECT_EQ(run(dir_, tolerated + " --limit max_channel_delta=255 --limit max_mean_shift=255 "
+                                  "--limit max_mean_delta=255")
                 .rc,
             0);
 }
@@ -243,7 +254,7 @@ TEST_F(CliCompare, CompareAndCheckGiveOneVerdict) {
       SCOPED_TRACE(fmt::format("mismatch {} rmse {}", mismatch, rmse));
       const std::string limits = fmt::format("--gate rmse.max={}", rmse);
       const Outcome c = run(dir_, fmt::format("{} {} --metric resemble --mode less --threshold {} "
-                                              "{} --json",
+                                              "--limit max_channel_delta=255 {} --json",
                                               path("a.png"), path("b.png"), mismatch, limits));
       const auto failed = nlohmann::json::parse(c.out)["failed_gates"];
       std::string said;

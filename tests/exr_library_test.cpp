@@ -33,7 +33,7 @@ std::vector<unsigned char> written_exr(int width, int height, const std::vector<
   const aosuite::test::TempDir dir;  // its own: ctest runs these tests side by side
   const auto path = dir / "written.exr";
   char err[512] = {};
-  EXPECT_EQ(aosuite_write_exr(path.c_str(), width, height, pixels.data(), err, sizeof err), 0)
+  EXPECT_EQ(aosuite_write_exr(path.c_str(), width, height, 1, pixels.data(), err, sizeof err), 0)
       << err;
   return aosuite::read_file(path);
 }

@@ -46,7 +46,9 @@ class GateCli : public ::testing::Test {
 
 // One pixel of 48 changed (2.08 %): inside the failing 10 %, beyond the warning 1 %.
 TEST_F(GateCli, AnImageBeyondAWarningLimitPassesWithAWarnStatus) {
-  const std::string tolerance = "max_mismatch_percent = 10\nwarn = { max_mismatch_percent = 1 }\n";
+  const std::string tolerance =
+      "max_mismatch_percent = 10\nmax_channel_delta = 255\nmax_mean_shift = 255\nmax_mean_delta = "
+      "255\nwarn = { max_mismatch_percent = 1 }\n";
   suite(tolerance);
   draw(dir_ / "s" / "x.png", 0, 0);
   ASSERT_EQ(aosuite("bless s/w.toml").rc, 0);
@@ -77,7 +79,9 @@ TEST_F(GateCli, AnImageBeyondAWarningLimitPassesWithAWarnStatus) {
   EXPECT_EQ(results().at("cases").at(0).at("status"), "FAIL");
 
   // Without the warning tier the one-pixel change is a plain pass.
-  suite("max_mismatch_percent = 10\n");
+  suite(
+      "max_mismatch_percent = 10\nmax_channel_delta = 255\nmax_mean_shift = 255\nmax_mean_delta = "
+      "255\n");
   draw(dir_ / "s" / "x.png", 1, 50);
   r = aosuite("check s/w.toml");
   EXPECT_EQ(r.rc, 0) << r.out;
@@ -97,7 +101,9 @@ TEST_F(GateCli, AnImageBeyondAWarningLimitPassesWithAWarnStatus) {
 
 // A metric that only the warning tier gates is measured for it, and its gate warns.
 TEST_F(GateCli, AMetricOnlyTheWarningTierGatesIsMeasuredAndWarns) {
-  suite("max_mismatch_percent = 100\n[case.tolerance.warn]\nrmse = { max = 0.001 }\n");
+  suite(
+      "max_mismatch_percent = 100\nmax_channel_delta = 255\nmax_mean_shift = 255\nmax_mean_delta = "
+      "255\n[case.tolerance.warn]\nrmse = { max = 0.001 }\n");
   draw(dir_ / "s" / "x.png", 0, 0);
   ASSERT_EQ(aosuite("bless s/w.toml").rc, 0);
   draw(dir_ / "s" / "x.png", 3, 20);
@@ -115,15 +121,19 @@ TEST_F(GateCli, AMetricOnlyTheWarningTierGatesIsMeasuredAndWarns) {
 TEST_F(GateCli, FolderModeWarnsFromTheCommandLine) {
   draw(dir_ / "exp" / "a.png", 0, 0);
   draw(dir_ / "act" / "a.png", 1, 50);
-  test::Outcome r =
-      aosuite("check --actual act --expected exp --max-mismatch 10 --warn-max-mismatch 1");
+  test::Outcome r = aosuite(
+      "check --actual act --expected exp --max-mismatch 10 --max-channel-delta 255 --limit "
+      "max_mean_shift=255 --limit max_mean_delta=255 --warn-max-mismatch 1");
   EXPECT_EQ(r.rc, 0) << r.out << r.err;
   EXPECT_NE(r.out.find("WARN "), std::string::npos) << r.out;
-  r = aosuite("check --actual act --expected exp --max-mismatch 10 --warn-gate flip.max_mean=1");
+  r = aosuite(
+      "check --actual act --expected exp --max-mismatch 10 --max-channel-delta 255 --limit "
+      "max_mean_shift=255 --limit max_mean_delta=255 --warn-gate flip.max_mean=1");
   EXPECT_EQ(r.rc, 0) << r.out << r.err;
   EXPECT_EQ(r.out.find("WARN "), std::string::npos) << r.out;
   r = aosuite(
-      "check --actual act --expected exp --max-mismatch 10 --warn-gate flip.max_mean=0.00001");
+      "check --actual act --expected exp --max-mismatch 10 --max-channel-delta 255 --limit "
+      "max_mean_shift=255 --limit max_mean_delta=255 --warn-gate flip.max_mean=0.00001");
   EXPECT_EQ(r.rc, 0) << r.out << r.err;
   EXPECT_NE(r.out.find("warning: flip mean"), std::string::npos) << r.out;
   r = aosuite("check --actual act --expected exp --gate flip.max_mean=0.00001");
@@ -166,6 +176,7 @@ TEST_F(GateCli, TheLargestDifferenceIsLocated) {
   test::write_exr(dir_ / "act" / "f.exr", 8, 6, {"Y"}, moved);
   test::Outcome r = aosuite(
       "check --actual act --expected exp --gate rmse.max=1 --max-mismatch 100 "
+      "--max-channel-delta 255 --limit max_mean_shift=255 --limit max_mean_delta=255 "
       "--report rep");
   EXPECT_EQ(r.rc, 0) << r.out << r.err;
   EXPECT_NE(r.out.find("max Δ 40 @ (5, 2)"), std::string::npos) << r.out;

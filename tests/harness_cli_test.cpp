@@ -192,7 +192,7 @@ TEST_F(HarnessCli, BadInputIsAClearErrorAndLosesNothing) {
   write_png_rgba8(golden, cv::Mat(10, 10, CV_8UC4, cv::Scalar(0, 0, 0, 255)));
   r = aosuite("check suites/t.toml");
   EXPECT_EQ(r.rc, 1) << r.out;
-  EXPECT_NE(r.out.find("golden is 10x10, render is 48x27"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("expected is 10x10, actual is 48x27"), std::string::npos) << r.out;
   fs::remove(golden);
   r = aosuite("check suites/t.toml");
   EXPECT_EQ(r.rc, 1);

@@ -95,13 +95,14 @@ TEST_F(HarnessGates, FlipAndAoFloatRmseGateACaseAndTheReportShowsTheHeatMap) {
   EXPECT_EQ(r.rc, 0) << "the report's images are the goldens now\n" << r.out;
 
   // Loose gates: the shaders as they are, against the regression's goldens, pass, for
-  // Resemble's gate is not asked for; and the changed tolerance is judged again, not reused.
-  suite("flip = { max_mean = 1 }\nrmse = { max = 1 }\n", R"(["with_ao", "ao_float"])");
+  // Resemble's gate is lifted by name; and the changed tolerance is judged again, not reused.
+  suite("resemble = false\nflip = { max_mean = 1 }\nrmse = { max = 1 }\n",
+        R"(["with_ao", "ao_float"])");
   r = aosuite("check suites/g.toml");
   EXPECT_EQ(r.rc, 0) << r.out << r.err;
-  // With Resemble's own keys beside them, its gate holds too, and fails (the goldens are the
+  // Without that, Resemble's gate holds beside them, and fails (the goldens are the
   // regression's now; the shaders as they are differ from them).
-  suite("max_mismatch_percent = 0\nflip = { max_mean = 1 }\n", R"(["with_ao"])");
+  suite("flip = { max_mean = 1 }\n", R"(["with_ao"])");
   r = aosuite("check suites/g.toml");
   EXPECT_EQ(r.rc, 1) << r.out << r.err;
   EXPECT_NE(r.out.find("mismatch"), std::string::npos) << r.out;
@@ -111,12 +112,17 @@ TEST_F(HarnessGates, FlipAndAoFloatRmseGateACaseAndTheReportShowsTheHeatMap) {
 // same in both images, so the counts agree and only the denominators differ.
 TEST_F(HarnessGates, ForegroundOnlyMeasuresGeometryPixelsOnly) {
   const std::string images = R"(["with_ao"])";
-  suite("max_mismatch_percent = 100\nrmse = { max = 1 }\n", images, "spheres", "front");
+  suite(
+      "max_mismatch_percent = 100\nmax_channel_delta = 255\nmax_mean_shift = 255\nmax_mean_delta = "
+      "255\nrmse = { max = 1 }\n",
+      images, "spheres", "front");
   ASSERT_EQ(aosuite("bless suites/g.toml").rc, 0);
   ASSERT_EQ(aosuite("check suites/g.toml", broken()).rc, 0);
   const nlohmann::json frame = results().at("cases").at(0).at("images").at(0);
-  suite("max_mismatch_percent = 100\nrmse = { max = 1 }\nforeground_only = true\n", images,
-        "spheres", "front");
+  suite(
+      "max_mismatch_percent = 100\nmax_channel_delta = 255\nmax_mean_shift = 255\nmax_mean_delta = "
+      "255\nrmse = { max = 1 }\nforeground_only = true\n",
+      images, "spheres", "front");
   ASSERT_EQ(aosuite("check suites/g.toml", broken()).rc, 0);
   const nlohmann::json c = results().at("cases").at(0);
   const nlohmann::json geometry = c.at("images").at(0);
@@ -179,7 +185,7 @@ rmse = { max = 0.001 }
 // one; a painted region's strict gate catches what the loose base gate allows.
 TEST_F(HarnessGates, RegionMapsBesideTheGoldenPickTolerances) {
   suite(
-      "flip = { max_mean = 1 }\n[case.tolerance.regions]\n"
+      "resemble = false\nflip = { max_mean = 1 }\n[case.tolerance.regions]\n"
       "strict = { color = [255, 0, 0], flip = { max_mean = 0.001 } }\n",
       R"(["with_ao"])", "spheres", "front");
   ASSERT_EQ(aosuite("bless suites/g.toml").rc, 0);

@@ -16,6 +16,7 @@
 #include <thread>
 
 #include "compare/opencv.hpp"
+#include "exr_fixture.hpp"
 #include "png_fixture.hpp"
 #include "process.hpp"
 
@@ -170,8 +171,10 @@ TEST_F(ImageCases, TheTemplateAndTheDefaultsCatchAGlobalShadingChange) {
   write_png_rgba8(dir_ / "expected" / "shade.png", shade);
   cv::Mat darker = shade - cv::Scalar(12, 12, 12, 0);
   write_png_rgba8(dir_ / "actual" / "shade.png", darker);
-  // Resemble's `less` mode alone sees nothing.
-  test::Outcome r = aosuite("check --actual actual --expected expected --max-mismatch 0");
+  // Resemble's `less` mode alone sees nothing: every other limit lifted by name.
+  test::Outcome r = aosuite(
+      "check --actual actual --expected expected --max-channel-delta 255 "
+      "--limit max_mean_shift=255 --limit max_mean_delta=255");
   EXPECT_EQ(r.rc, 0) << r.out;
   // Folder mode's defaults, and the template's tolerance, do.
   r = aosuite("check --actual actual --expected expected");
@@ -583,7 +586,10 @@ TEST_F(ImageCases, TwoSidedBudgetsFailAboveAndBelow) {
   suite("");
   draw(0, 0);
   ASSERT_EQ(aosuite("bless s/b.toml").rc, 0);
-  const std::string delta = "channel_delta = [2, 8]\nmax_mismatch_percent = 100\n";
+  // The budgets under test alone: every other limit lifted by name.
+  const std::string means = "max_mean_shift = 255\nmax_mean_delta = 255\n";
+  const std::string lifted = means + "max_channel_delta = 255\n";
+  const std::string delta = "channel_delta = [2, 8]\nmax_mismatch_percent = 100\n" + means;
   EXPECT_EQ(check(delta, 5, 5).rc, 0);
   test::Outcome r = check(delta, 5, 12);
   EXPECT_EQ(r.rc, 1);
@@ -593,14 +599,14 @@ TEST_F(ImageCases, TwoSidedBudgetsFailAboveAndBelow) {
   EXPECT_NE(r.out.find("max channel delta 0 (budget 2..8: the difference it allows for is gone"),
             std::string::npos)
       << r.out;
-  const std::string pixels = "differing_pixels = [1, 10]\nmax_mismatch_percent = 100\n";
+  const std::string pixels = "differing_pixels = [1, 10]\nmax_mismatch_percent = 100\n" + lifted;
   EXPECT_EQ(check(pixels, 5, 30).rc, 0);
   r = check(pixels, 20, 30);
   EXPECT_EQ(r.rc, 1);
   EXPECT_NE(r.out.find("20 differing pixels (budget 1..10)"), std::string::npos) << r.out;
   EXPECT_EQ(check(pixels, 0, 0).rc, 1);
-  EXPECT_EQ(check("differing_pixels = 3\nmax_mismatch_percent = 100\n", 3, 30).rc, 0);
-  EXPECT_EQ(check("differing_pixels = 3\nmax_mismatch_percent = 100\n", 4, 30).rc, 1);
+  EXPECT_EQ(check("differing_pixels = 3\nmax_mismatch_percent = 100\n" + lifted, 3, 30).rc, 0);
+  EXPECT_EQ(check("differing_pixels = 3\nmax_mismatch_percent = 100\n" + lifted, 4, 30).rc, 1);
   r = check("differing_pixels = [5, 2]\n", 0, 0);
   EXPECT_EQ(r.rc, 2);
   EXPECT_NE(r.err.find("differing_pixels: min 5 is above max 2"), std::string::npos) << r.err;
@@ -626,7 +632,10 @@ TEST_F(ImageCases, BudgetsAPassUsesUnderATenthOfAreStale) {
   EXPECT_EQ(check("max_mismatch_percent = 50\n").out.find("stale"), std::string::npos);
   base.at<cv::Vec4b>(0, 0)[0] = 200;  // 1 of 48 pixels: 2.08 %
   write_png_rgba8(dir_ / "s" / "x.png", base);
-  test::Outcome r = check("max_mismatch_percent = 50\nrmse = { max = 1 }\n");
+  // The mismatch budget and the gate alone: the channel limits lifted by name.
+  const std::string lifted =
+      "max_channel_delta = 255\nmax_mean_shift = 255\nmax_mean_delta = 255\n";
+  test::Outcome r = check("max_mismatch_percent = 50\nrmse = { max = 1 }\n" + lifted);
   EXPECT_EQ(r.rc, 0) << r.out;
   EXPECT_NE(r.out.find("stale budgets: 1 passing image use under a tenth of a limit (x x: "
                        "max_mismatch_percent 50 (used 2.08)"),
@@ -640,7 +649,7 @@ TEST_F(ImageCases, BudgetsAPassUsesUnderATenthOfAreStale) {
                          .at("stale");
   ASSERT_EQ(stale.size(), 2u) << stale;
   EXPECT_TRUE(stale[1].get<std::string>().starts_with("rmse.max_value 1 (used ")) << stale;
-  r = check("max_mismatch_percent = 10\n");  // 2.08 is over a tenth of 10: in use
+  r = check("max_mismatch_percent = 10\n" + lifted);  // 2.08 is over a tenth of 10: in use
   EXPECT_EQ(r.rc, 0) << r.out;
   EXPECT_EQ(r.out.find("stale"), std::string::npos) << r.out;
 }
@@ -704,6 +713,9 @@ name = "disk"
 files = ["out/a.png"]
 [case.tolerance]
 max_mismatch_percent = 10
+max_channel_delta = 255
+max_mean_shift = 255
+max_mean_delta = 255
 )";
   EXPECT_EQ(aosuite("check s/f.toml").rc, 1);
   EXPECT_EQ(aosuite("bless s/f.toml").rc, 0);
@@ -847,11 +859,11 @@ TEST_F(ImageCases, FolderModeReportsChangedNewAndDeletedAndBlessAcceptsThem) {
     fs::copy_file(from, dir_ / to);
   }
   std::ofstream(dir_ / "actual" / "notes.txt") << "not an image";
-  // EXR files are paired too, and compared byte for byte.
-  std::ofstream(dir_ / "actual" / "depth.exr") << "v1";
-  std::ofstream(dir_ / "expected" / "depth.exr") << "v2";
-  std::ofstream(dir_ / "actual" / "sub" / "same.exr") << "v1";
-  std::ofstream(dir_ / "expected" / "sub" / "same.exr") << "v1";
+  // EXR files are paired too, and without a float gate compared byte for byte.
+  test::write_exr(dir_ / "actual" / "depth.exr", 2, 1, {"Y"}, {0.5f, 1.0f});
+  test::write_exr(dir_ / "expected" / "depth.exr", 2, 1, {"Y"}, {0.5f, 2.0f});
+  test::write_exr(dir_ / "actual" / "sub" / "same.exr", 2, 1, {"Y"}, {0.5f, 1.0f});
+  fs::copy_file(dir_ / "actual" / "sub" / "same.exr", dir_ / "expected" / "sub" / "same.exr");
   test::Outcome r = aosuite("check --actual actual --expected expected --report rep --junit j.xml");
   EXPECT_EQ(r.rc, 1) << r.out << r.err;
   EXPECT_NE(r.out.find("7 images: 3 unchanged, 2 changed, 1 new, 1 deleted, 0 errors"),
@@ -865,7 +877,7 @@ TEST_F(ImageCases, FolderModeReportsChangedNewAndDeletedAndBlessAcceptsThem) {
       << r.out;
   const auto results = nlohmann::json::parse(read_text(dir_ / "rep" / "results.json"));
   EXPECT_EQ(results["cases"].size(), 7u);
-  EXPECT_NE(r.out.find("the EXR files differ"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("the float images differ"), std::string::npos) << r.out;
   EXPECT_EQ(results["cases"][0]["kind"], "folder");
   EXPECT_TRUE(fs::exists(dir_ / "rep" / "index.html"));
   EXPECT_TRUE(fs::exists(dir_ / "rep" / "cases" / "changed.png" / "diff_image.png"));
@@ -876,7 +888,7 @@ TEST_F(ImageCases, FolderModeReportsChangedNewAndDeletedAndBlessAcceptsThem) {
   r = aosuite("bless --actual actual --expected expected --failed --report rep");
   EXPECT_EQ(r.rc, 0) << r.out << r.err;
   EXPECT_NE(r.out.find("4 of 4 cases blessed"), std::string::npos) << r.out;
-  EXPECT_EQ(read_text(dir_ / "expected" / "depth.exr"), "v1");
+  EXPECT_EQ(read_file(dir_ / "expected" / "depth.exr"), read_file(dir_ / "actual" / "depth.exr"));
   EXPECT_EQ(read_file(dir_ / "expected" / "changed.png"), read_file(green));
   EXPECT_EQ(read_file(dir_ / "expected" / "new.png"), read_file(green));
   EXPECT_FALSE(fs::exists(dir_ / "expected" / "gone.png"));
@@ -1032,6 +1044,9 @@ TEST_F(ImageCases, TheReportOrdersLinksAndApprovesWhatIsSelected) {
   std::string suite = R"(
 [defaults.tolerance]
 max_mismatch_percent = 60
+max_channel_delta = 255
+max_mean_shift = 255
+max_mean_delta = 255
 [[case]]
 name = "big"
 files = ["shots/big.png"]
