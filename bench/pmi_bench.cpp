@@ -18,7 +18,7 @@ namespace rd = aosuite::renderer;
 
 using aosuite::bench::bench_renderer;
 
-// The dragon when scripts/fetch_dragon.sh has run, else the built-in spheres.
+// The dragon when scripts/fetch_assets.sh has run, else the built-in spheres.
 const rd::PmiObject& object() {
   static const rd::PmiObject o = rd::pmi_object(rd::builtin_scene(
       std::filesystem::exists(rd::downloadable_scene_file("dragon")) ? "dragon" : "spheres"));

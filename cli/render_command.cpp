@@ -137,7 +137,7 @@ int run_scenes(const std::vector<std::string>& files, bool json) {
       continue;
     }
     fmt::print("{} ({})\n", name,
-               fs::exists(file) ? file.string() : "not fetched: run scripts/fetch_dragon.sh");
+               fs::exists(file) ? file.string() : "not fetched: run scripts/fetch_assets.sh");
     print_views(rd::builtin_scene_views(name));
   }
   if (json) fmt::print("{}\n", nlohmann::json{{"scenes", scenes}}.dump());

@@ -126,8 +126,8 @@ void print_result(const TuneArgs& a, const ao::TuneResult& r) {
 }
 
 // The built-in scenes, the downloadable ones that are here (the dragon), and the scene files
-// of ./suites/scenes (the project's: meshes of ../shared/assets) that load; one line on stderr
-// for each left out.
+// of ./suites/scenes (the project's: meshes that scripts/fetch_assets.sh fetches) that load; one
+// line on stderr for each left out.
 std::vector<std::string> default_scenes() {
   std::vector<std::string> out = rd::builtin_scene_names();
   for (const std::string& name : rd::downloadable_scene_names()) {

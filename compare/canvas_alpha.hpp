@@ -1,7 +1,8 @@
 // What a 2D canvas does to a decoded image before Resemble.js sees it. Canvases store
 // premultiplied 8-bit colour, so translucent pixels come back from getImageData slightly
-// changed. Opaque pixels are never touched. Models measured against the real engines by
-// ../shared/oracle (see its README, "Caveats").
+// changed. Opaque pixels are never touched. Models measured against the real engines (Chromium,
+// node-canvas 2.11.2); the oracle_differential test checks Chromium's on every run against
+// Resemble.js in Chromium itself (tests/oracles/resemble).
 #pragma once
 
 #include <string_view>

@@ -1,6 +1,6 @@
-// Resemble.js 5.0.0's image comparison, reproduced exactly (see
-// ../shared/design/resemblejs-semantics.md): same verdict per pixel, same mismatch
-// percentage bit for bit, same bounds, same diff image bytes.
+// Resemble.js 5.0.0's image comparison, reproduced exactly (docs/compare.md): same verdict per
+// pixel, same mismatch percentage bit for bit, same bounds, same diff image bytes, checked
+// against the library itself by tests/oracle_differential_test.cpp.
 #pragma once
 
 #include <array>

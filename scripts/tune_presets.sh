@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Regenerates the built-in `tuned` presets (ao/presets/tuned-TECHNIQUE.toml): each technique
 # searched against the ray-traced reference at r = 0.25, 0.5 and 1 on the built-in
-# scenes and the meshes of ../shared/assets (suites/scenes/*.toml, the dragon), within GTAO
-# High's 18 depth taps, and validated by leaving one scene out at a time. The results (JSON,
+# scenes and on the meshes scripts/fetch_assets.sh fetches (suites/scenes/*.toml, the dragon),
+# within GTAO High's 18 depth taps, and validated by leaving one scene out at a time. The results (JSON,
 # and the printed tables) go to ${OUT:-reports/tune}; docs/results.md quotes them.
 # PMI has no depth taps: it is searched for the map from its visibility to AO, on the scenes with
 # an object (plane, ground alone, is left out).

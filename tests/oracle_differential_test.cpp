@@ -1,6 +1,7 @@
 // Differential test: aosuite's comparator against the real Resemble.js 5.0.0 running in
-// headless Chromium (../shared/oracle/resemble-oracle), on generated pairs that cover every
-// mode, option and quirk. Every result field and every byte of the raw diff image must match.
+// Debian's headless Chromium (tests/oracles/resemble/resemble-oracle, which installs its pinned
+// npm packages on first use), on generated pairs that cover every mode, option and quirk. Every
+// result field and every byte of the raw diff image must match.
 //   AOSUITE_ORACLE_PAIRS (default 2000), AOSUITE_ORACLE_SEED (default 1),
 //   AOSUITE_ORACLE_KEEP=DIR keeps the generated pairs and outputs.
 #include <gtest/gtest.h>

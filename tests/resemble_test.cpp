@@ -1,5 +1,5 @@
-// Each quirk of Resemble.js 5.0.0 with its expected value derived by hand
-// (../shared/design/resemblejs-semantics.md gives the rule each test names).
+// Each quirk of Resemble.js 5.0.0 with its expected value derived by hand from the rule each
+// test names (resemble.js 5.0.0's source; docs/compare.md).
 #include <gtest/gtest.h>
 
 #include <cmath>

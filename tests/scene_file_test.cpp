@@ -419,7 +419,12 @@ TEST_F(MeshFiles, MessagesShowTheFilesBytesEscaped) {
   EXPECT_NE(e3.find("\\x9b31m"), std::string::npos) << e3;
 }
 
-// The shared real meshes: triangle counts as their PLY headers declare them.
+// The real meshes scripts/fetch_assets.sh fetches into .cache/assets (absent until it has run).
+fs::path fetched_asset(const char* name) {
+  return fs::path(AOSUITE_SOURCE_DIR) / ".cache" / "assets" / name;
+}
+
+// A PLY file's triangle count as its header declares it.
 std::uint64_t declared_faces(const fs::path& ply) {
   std::ifstream in(ply, std::ios::binary);
   for (std::string line; std::getline(in, line) && line.rfind("end_header", 0) != 0;) {
@@ -428,13 +433,13 @@ std::uint64_t declared_faces(const fs::path& ply) {
   return 0;
 }
 
-TEST(SharedAssets, BunnyAndTeapotHaveTheirDeclaredTriangles) {
-  const fs::path dir = fs::path(AOSUITE_SOURCE_DIR) / ".." / "shared" / "assets";
-  if (!fs::is_directory(dir)) GTEST_SKIP() << dir << " is absent (only some machines have it)";
-  for (const char* name : {"bun_zipper.ply", "utah_teapot_992.ply"}) {
-    const std::uint64_t faces = declared_faces(dir / name);
+TEST(FetchedAssets, BunnyAndTeapotHaveTheirDeclaredTriangles) {
+  for (const char* name : {"bunny.ply", "teapot.ply"}) {
+    const fs::path file = fetched_asset(name);
+    if (!fs::exists(file)) GTEST_SKIP() << file << " not fetched (scripts/fetch_assets.sh)";
+    const std::uint64_t faces = declared_faces(file);
     ASSERT_GT(faces, 0u) << name;
-    const Mesh m = load_mesh(dir / name);
+    const Mesh m = load_mesh(file);
     EXPECT_EQ(m.triangles.size(), faces) << name;
     expect_unit_normals(m);
   }
@@ -694,13 +699,13 @@ TEST(BuiltinScenes, NamesFilesAndTheDragon) {
   setenv("AOSUITE_ASSETS", empty.path().c_str(), 1);
   EXPECT_EQ(downloadable_scene_file("dragon").parent_path(), empty.path());
   const std::string e = error_of([] { builtin_scene("dragon"); });
-  EXPECT_NE(e.find("scripts/fetch_dragon.sh"), std::string::npos) << e;
+  EXPECT_NE(e.find("scripts/fetch_assets.sh"), std::string::npos) << e;
   before ? setenv("AOSUITE_ASSETS", saved.c_str(), 1) : unsetenv("AOSUITE_ASSETS");
 }
 
 TEST(BuiltinScenes, DragonStandsOnTheGroundWhenFetched) {
   const fs::path file = downloadable_scene_file("dragon");
-  if (!fs::exists(file)) GTEST_SKIP() << file << " not fetched (scripts/fetch_dragon.sh)";
+  if (!fs::exists(file)) GTEST_SKIP() << file << " not fetched (scripts/fetch_assets.sh)";
   const Scene s = builtin_scene("dragon");
   ASSERT_EQ(s.meshes.size(), 2u);
   EXPECT_EQ(s.meshes[1].triangles.size(), declared_faces(file));
@@ -709,9 +714,10 @@ TEST(BuiltinScenes, DragonStandsOnTheGroundWhenFetched) {
   EXPECT_NEAR(std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z}), 5, 1e-3);
 }
 
-TEST(ExampleScenes, LoadWhenTheSharedAssetsArePresent) {
-  if (!fs::is_directory(fs::path(AOSUITE_SOURCE_DIR) / ".." / "shared" / "assets")) {
-    GTEST_SKIP() << "../shared/assets is absent";
+TEST(ExampleScenes, LoadWhenTheirMeshesAreFetched) {
+  for (const char* name : {"bunny.ply", "teapot.ply"}) {
+    const fs::path file = fetched_asset(name);
+    if (!fs::exists(file)) GTEST_SKIP() << file << " not fetched (scripts/fetch_assets.sh)";
   }
   for (const auto& entry :
        fs::directory_iterator(fs::path(AOSUITE_SOURCE_DIR) / "suites" / "scenes")) {
@@ -719,6 +725,22 @@ TEST(ExampleScenes, LoadWhenTheSharedAssetsArePresent) {
     const Scene s = load_scene_file(entry.path());
     EXPECT_GE(s.meshes.size(), 2u) << entry.path();
     EXPECT_GE(s.views.size(), 2u) << entry.path();
+  }
+  // The fetched meshes stand where the scenes put them (the bunny on the ground, the teapot on
+  // its table), as tall as the scenes make them: the bunny's longest side (fit, before its turn
+  // about y) is 1.49 of its 9.907 x 9.658 x 7.540, the teapot's 0.6 of its 32.14 x 15.75 x 20.
+  struct Placed {
+    const char* scene;
+    std::size_t mesh;
+    double floor, height;
+  };
+  for (const Placed& p : {Placed{"bunny.toml", 1, 0, 1.49 * 9.657897 / 9.907325},
+                          Placed{"teapot.toml", 2, 0.75, 0.6 * 15.75 / 32.140626}}) {
+    const Scene s = load_scene_file(fs::path(AOSUITE_SOURCE_DIR) / "suites" / "scenes" / p.scene);
+    ASSERT_GT(s.meshes.size(), p.mesh) << p.scene;
+    const auto [lo, hi] = bounds(s.meshes[p.mesh]);
+    EXPECT_NEAR(lo.y, p.floor, 1e-5) << p.scene;
+    EXPECT_NEAR(hi.y - lo.y, p.height, 1e-4) << p.scene;
   }
 }
 

@@ -1,7 +1,7 @@
 // Viewpoint-based ambient occlusion (González, Sbert & Feixas, IEEE CG&A 2008): the
 // information channel V -> O between viewpoints on a sphere around the object and its
-// polygons, and polygonal mutual information PMI(o) as an occlusion measure
-// (../shared/design/ao-techniques.md section 7).
+// polygons, and polygonal mutual information PMI(o) as an occlusion measure (section 7 of the
+// AO-techniques specification that docs/results.md names).
 //
 // Viewpoints: the vertices of a subdivided icosahedron on a sphere of kSphereFactor times the
 // object's bounding-sphere radius, each a perspective camera looking at the centre whose

@@ -250,7 +250,7 @@ Scene dragon() {
   const std::filesystem::path file = downloadable_scene_file("dragon");
   if (!std::filesystem::exists(file)) {
     throw FileError(fmt::format(
-        "{}: not found; the dragon scene needs it: run scripts/fetch_dragon.sh", file.string()));
+        "{}: not found; the dragon scene needs it: run scripts/fetch_assets.sh", file.string()));
   }
   Mesh mesh = load_mesh(file);
   mesh.colour = {0.75f, 0.7f, 0.6f};

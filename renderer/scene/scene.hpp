@@ -56,7 +56,7 @@ void scale_scene(Scene& scene, float factor);
 // Built-in scenes that need no download: "plane", "corner", "spheres" (analytic tests),
 // "village" (six two-storey houses, open space), "workshop" (interior and exterior).
 std::vector<std::string> builtin_scene_names();
-// Built-in scenes whose mesh scripts/fetch_dragon.sh downloads: "dragon" (the Stanford dragon
+// Built-in scenes whose mesh scripts/fetch_assets.sh downloads: "dragon" (the Stanford dragon
 // on a ground plane, as in the thesis).
 std::vector<std::string> downloadable_scene_names();
 // The file a downloadable scene needs: in $AOSUITE_ASSETS when set, else in the repository's

@@ -9,9 +9,13 @@ Writes the pairs of tests/metric_pairs.hpp to files (build/tests/metric_oracle_i
   * SSIM: scikit-image's structural_similarity (Debian's python3-skimage 0.19),
 and writes the numbers as JSON (default tests/data/metric_oracle.json).
 
-Exit status 77 (CTest's skip) when an oracle is missing, with the reason on stderr.
-    tests/oracles/metric_oracle.py --build-dir build --flip-source /work/oracles/flip \
-        --flip-tool /work/oracles/flip-tool [--out tests/data/metric_oracle.json]
+Exit status 77 (CTest's skip) when an oracle is missing, with one line on stderr saying why
+and how to enable it. The FLIP paths have no defaults but $FLIP_SOURCE and $FLIP_TOOL:
+    git clone https://github.com/NVlabs/flip             # version 1.6
+    g++ -O3 -fopenmp -std=c++17 flip/src/cpp/tool/FLIP-tool.cpp -o flip-tool
+    FLIP_SOURCE=$PWD/flip FLIP_TOOL=$PWD/flip-tool ctest --test-dir build -R metric_oracle_live
+or  tests/oracles/metric_oracle.py --build-dir build --flip-source DIR [--flip-tool FILE]
+        [--out tests/data/metric_oracle.json]
 """
 import argparse
 import csv
@@ -32,13 +36,18 @@ def skip(reason):
     sys.exit(SKIP)
 
 
+HOW_TO_ENABLE = ("set FLIP_SOURCE to a checkout of https://github.com/NVlabs/flip v1.6 and, to "
+                 "cross-check its tool too, FLIP_TOOL to its binary (g++ -O3 -fopenmp -std=c++17 "
+                 "src/cpp/tool/FLIP-tool.cpp -o flip-tool in the checkout)")
+
+
 def build_driver(flip_source, work):
     header = flip_source / "src/cpp/FLIP.h"
     if not header.exists():
-        skip(f"no NVlabs/flip checkout at {flip_source} (set --flip-source or FLIP_SOURCE)")
+        skip(f"no NVlabs/flip checkout at {flip_source}: {HOW_TO_ENABLE}")
     versions = (flip_source / "src/cpp/tool/FLIPToolHelpers.h").read_text(errors="replace")
     if "MajorVersion = 1;" not in versions or "MinorVersion = 6;" not in versions:
-        skip(f"{flip_source} is not FLIP v1.6")
+        skip(f"{flip_source} is not FLIP v1.6: {HOW_TO_ENABLE}")
     exe = work / "flip_oracle_driver"
     subprocess.run(["g++", "-O3", "-fopenmp", "-std=c++17", f"-I{flip_source}/src/cpp",
                     str(ROOT / "tests/oracles/flip_oracle_driver.cpp"), "-o", str(exe)],
@@ -64,8 +73,8 @@ def flip_tool_values(tool, ref, test, tone, work):
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--build-dir", default=str(ROOT / "build"))
-    ap.add_argument("--flip-source", default=os.environ.get("FLIP_SOURCE", "/work/oracles/flip"))
-    ap.add_argument("--flip-tool", default=os.environ.get("FLIP_TOOL"))
+    ap.add_argument("--flip-source", default=os.environ.get("FLIP_SOURCE") or None)
+    ap.add_argument("--flip-tool", default=os.environ.get("FLIP_TOOL") or None)
     ap.add_argument("--out", default=str(ROOT / "tests/data/metric_oracle.json"))
     ap.add_argument("--check", metavar="METRIC_TESTS",
                     help="then run this test binary against the fresh numbers")
@@ -80,6 +89,10 @@ def main():
     if shutil.which("g++") is None:
         skip("no g++ to build the FLIP reference")
 
+    if not args.flip_source:
+        skip(f"FLIP_SOURCE is not set: {HOW_TO_ENABLE}")
+    if args.flip_tool and not os.access(args.flip_tool, os.X_OK):
+        skip(f"no FLIP tool at {args.flip_tool}: {HOW_TO_ENABLE}")
     inputs = pathlib.Path(args.build_dir) / "tests/metric_oracle_inputs"
     if not inputs.exists():
         skip(f"{inputs} is not built")
