@@ -172,30 +172,35 @@ Scene scaled_scene(const std::string& name, float scale, float near_ratio) {
   return scene;
 }
 
-// settings() at radius 0.5 with every parameter in scene units scaled with the scene: the
-// radius, and bitmask's thickness. SAO's bias is a share of the radius and the others' biases
-// are per unit depth or sines, so they stay.
-RenderSettings scaled_settings(Technique t, float scale, Blur blur = Blur::kNone,
-                               bool exact_plane = false) {
-  RenderSettings rs = settings(t, 0.5f * scale, blur);
-  rs.params.bitmask.thickness *= scale;
-  rs.params.gtao.exact_plane = exact_plane;
-  return rs;
-}
-
-// What the stress tests run: every technique at its defaults, and GTAO's other sampling path.
+// What the stress tests run: every technique at its defaults in both pipelines, and GTAO's
+// other sampling path.
 struct Variant {
   Technique t;
   bool exact_plane;
+  Pipeline pipeline;
   std::string name() const {
-    return std::string(technique_name(t)) + (exact_plane ? " exact_plane" : "");
+    return std::string(technique_name(t)) + (exact_plane ? " exact_plane" : "") +
+           (pipeline == Pipeline::kCompute ? " compute" : "");
   }
 };
 std::vector<Variant> stress_variants() {
   std::vector<Variant> out;
-  for (Technique t : kAll) out.push_back({t, false});
-  out.push_back({Technique::kGtao, true});
+  for (Pipeline p : {Pipeline::kFragment, Pipeline::kCompute}) {
+    for (Technique t : kAll) out.push_back({t, false, p});
+    out.push_back({Technique::kGtao, true, p});
+  }
   return out;
+}
+
+// settings() at radius 0.5 with every parameter in scene units scaled with the scene: the
+// radius, and bitmask's thickness. SAO's bias is a share of the radius and the others' biases
+// are per unit depth or sines, so they stay.
+RenderSettings scaled_settings(const Variant& var, float scale, Blur blur = Blur::kNone) {
+  RenderSettings rs = settings(var.t, 0.5f * scale, blur);
+  rs.params.bitmask.thickness *= scale;
+  rs.params.gtao.exact_plane = var.exact_plane;
+  rs.pipeline = var.pipeline;
+  return rs;
 }
 
 // The stress matrix: every technique at scene scales 1e-3..1e4 and near planes from 1e-6
@@ -208,7 +213,7 @@ TEST(RendererStress, ScalesAndNearPlanes) {
       for (const Variant& var : stress_variants()) {
         const Scene plane = scaled_scene("plane", scale, near);
         const Scene corner = scaled_scene("corner", scale, near);
-        const RenderSettings rs = scaled_settings(var.t, scale, Blur::kNone, var.exact_plane);
+        const RenderSettings rs = scaled_settings(var, scale);
         const std::string what =
             var.name() + " scale " + std::to_string(scale) + " near " + std::to_string(near);
         Stats open, crease;
@@ -243,9 +248,7 @@ TEST(RendererStress, SameAoAtEveryScale) {
   for (const Variant& var : stress_variants()) {
     for (Blur blur : {Blur::kNone, Blur::kBilateral}) {
       double worst_exact = 0, worst_decimal = 0, worst_mean = 0, worst_share = 1;
-      const auto at = [&](float scale) {
-        return scaled_settings(var.t, scale, blur, var.exact_plane);
-      };
+      const auto at = [&](float scale) { return scaled_settings(var, scale, blur); };
       for (const auto& [name, view] : views) {
         const Images one = render(scaled_scene(name, 1, 0.01f), view, at(1));
         const Stats at_one = geometry_stats(one);
