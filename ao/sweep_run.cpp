@@ -63,6 +63,7 @@ void sweep_view(rd::Renderer& renderer, const SweepGrid& g, const harness::Selec
           if (samples > 0) s.params.samples = samples;
           s.params.radius = radius, s.params.intensity = intensity;
           s.outputs = rd::parse_outputs("no_ao,ao_float");  // no_ao: the frame error's lighting
+          s.pipeline = g.pipeline;
           const Timed t = render_timed(renderer, scene, view, s, g.runs);
           Row row{i,
                   scene.name,
