@@ -108,9 +108,10 @@ SweepResult run_sweep(const SweepGrid& g, const harness::Selection& shard,
         sweep_view(renderer, g, shard, scene, cache, *views[v], v, w, h, index, rows, on_row);
     }
   }
-  return {
-      {g.name, renderer.gl_description(), renderer.gl_source(), g.rays, g.runs, g.unbounded, index},
-      std::move(rows)};
+  return {{g.name, renderer.gl_description(), renderer.gl_source(),
+           std::string(rd::pipeline_name(g.pipeline.value_or(renderer.default_pipeline()))), g.rays,
+           g.runs, g.unbounded, index},
+          std::move(rows)};
 }
 
 }  // namespace aosuite::ao

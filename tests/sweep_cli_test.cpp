@@ -141,7 +141,8 @@ TEST(SweepCli, ErrorPrintsJsonAndWritesTheReference) {
 }
 
 // `--pipeline` reaches error's and sweep's renders: the compute pipeline measures the same
-// error as the fragment one (the same AO on llvmpipe, compute_pipeline_tests) and says so.
+// error as the fragment one (the same AO on llvmpipe, compute_pipeline_tests), and both say
+// which ran (sweep.json too: shards of different pipelines do not merge).
 TEST(SweepCli, ErrorAndSweepTakeThePipeline) {
   const fs::path dir = scratch("pipeline");
   nlohmann::json errors[2];
@@ -165,8 +166,9 @@ TEST(SweepCli, ErrorAndSweepTakeThePipeline) {
                                  "--pipeline compute --out " +
                                  (dir / "out").string()),
                 dir);
-  EXPECT_EQ(o.rc, 0) << o.err;
-  EXPECT_TRUE(fs::exists(dir / "out" / "sweep.csv"));
+  ASSERT_EQ(o.rc, 0) << o.err;
+  const auto j = nlohmann::json::parse(std::ifstream(dir / "out" / "sweep.json"));
+  EXPECT_EQ(j["pipeline"], "compute");  // what its times are of
 }
 
 // Fixed parameters reach every configuration of their technique and the outputs name them.
