@@ -630,16 +630,18 @@ TEST(Renderer, AoUniformBlockMatchesTheShadersLayout) {
                                   offsetof(AoUniformBlock, falloff_range),
                                   offsetof(AoUniformBlock, thin_occluder),
                                   offsetof(AoUniformBlock, thickness)};
-  // Every full-screen fragment shader that declares the block, found by linking each: a new
-  // estimator is checked without an edit here. (One written for another vertex stage does not
-  // link with fullscreen.vert; no estimator is, and the count below would miss it.)
+  // Every full-screen fragment shader and per-pixel compute shader that declares the block,
+  // found by linking each: a new estimator is checked in both pipelines without an edit here.
+  // (One written for another vertex stage, or a compute shader needing other defines such as
+  // blur.comp, does not link; no estimator is, and the count below would miss it.)
   std::size_t checked = 0;
   for (std::string_view name : shader_names()) {
-    if (!name.ends_with(".frag")) continue;
-    const std::string fragment(name);
+    if (!name.ends_with(".frag") && !name.ends_with(".comp")) continue;
+    const std::string file(name);
     std::optional<Program> linked;
     try {
-      linked.emplace(make_program({"fullscreen.vert", fragment.c_str()}));
+      linked.emplace(name.ends_with(".comp") ? make_pixel_program(file.c_str())
+                                             : make_program({"fullscreen.vert", file.c_str()}));
     } catch (const std::exception&) {
       continue;
     }
@@ -650,13 +652,14 @@ TEST(Renderer, AoUniformBlockMatchesTheShadersLayout) {
     ++checked;
     for (std::size_t i = 0; i < std::size(names); ++i) {
       // std140 keeps every member of a used block active, so each one has its offset.
-      ASSERT_NE(indices[i], GL_INVALID_INDEX) << fragment << " " << names[i];
+      ASSERT_NE(indices[i], GL_INVALID_INDEX) << file << " " << names[i];
       GLint offset = -1;
       glGetActiveUniformsiv(program.get(), 1, &indices[i], GL_UNIFORM_OFFSET, &offset);
-      EXPECT_EQ(offset, static_cast<GLint>(expected[i])) << fragment << " " << names[i];
+      EXPECT_EQ(offset, static_cast<GLint>(expected[i])) << file << " " << names[i];
     }
   }
-  EXPECT_GE(checked, screen_space_technique_names().size());  // at least one per estimator
+  // At least one per estimator and pipeline.
+  EXPECT_GE(checked, 2 * screen_space_technique_names().size());
 }
 
 TEST(Renderer, RejectsAbsurdSettings) {
