@@ -42,6 +42,7 @@ rd::RenderSettings case_settings(const CaseOptions& o) {
   s.width = o.width, s.height = o.height;
   s.technique = rd::parse_technique(o.technique);
   s.params = technique_params(s.technique, o.preset, o.samples, o.radius, o.params);
+  if (!o.pipeline.empty()) s.pipeline = rd::parse_pipeline(o.pipeline);
   return s;
 }
 

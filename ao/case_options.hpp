@@ -17,11 +17,12 @@ struct CaseOptions {
   int width = 1920, height = 1080;
   std::optional<std::string> samples, radius;
   std::vector<std::string> params;  // KEY=VALUE
-  std::string preset;  // a preset file or built-in name (ao/preset.hpp), applied before the above
+  std::string preset;    // a preset file or built-in name (ao/preset.hpp), applied before the above
+  std::string pipeline;  // fragment|compute; empty: the device's default
 };
 
 // The render settings they name (all outputs, as RenderSettings defaults); throws
-// std::invalid_argument for an unknown technique or a bad parameter.
+// std::invalid_argument for an unknown technique or pipeline, or a bad parameter.
 renderer::RenderSettings case_settings(const CaseOptions& o);
 
 // The parameters `technique` reads, with their types (parameter table order): what `render`

@@ -24,6 +24,7 @@ ErrorStudy measure_error_study(const CaseOptions& c, const std::string& variant,
 
   rd::Renderer renderer;
   const rd::Images img = renderer.render(scene, view, s);
+  s.pipeline = img.pipeline;  // the one that ran, for the JSON
   ref::ReferenceCache cache(scene, ref::default_cache_dir());
   const rd::Camera camera = rd::make_camera(view, s.width, s.height);
   e.reference = cache.get(camera, img.depth, img.normal, rs);
@@ -44,6 +45,7 @@ nlohmann::ordered_json error_study_json(const ErrorStudy& e, const CaseOptions& 
   j["samples"] = s.params.samples, j["radius"] = s.params.radius;
   j["intensity"] = s.params.intensity;
   j["params"] = params_json(s.technique, s.params);
+  if (s.pipeline) j["pipeline"] = rd::pipeline_name(*s.pipeline);
   j["reference"] = {{"variant", variant},
                     {"rays", rs.rays},
                     {"radius", rs.radius},

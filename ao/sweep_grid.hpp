@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -32,6 +33,9 @@ struct SweepGrid {
   int rays = 256;         // reference rays per pixel
   bool unbounded = true;  // also measure against the unbounded reference
   std::vector<TechniqueGrid> techniques;
+  // Not the grid file's: the command's --pipeline (unset: the device's). It changes the times,
+  // not the AO.
+  std::optional<renderer::Pipeline> pipeline;
 };
 
 // Throws aosuite::FileError naming the file, and the key at fault, for unreadable or bad input.

@@ -22,8 +22,9 @@ SweepResult merge_sweeps(const std::vector<std::string>& shard_dirs) {
     try {
       const std::vector<unsigned char> bytes = read_file(file);
       const nlohmann::json j = nlohmann::json::parse(bytes.begin(), bytes.end());
-      m = {j.at("grid"), j.at("gl"),        j.at("gl_device"),     j.at("rays"),
-           j.at("runs"), j.at("unbounded"), j.at("configurations")};
+      // A sweep.json from before the compute pipeline (issue 44) timed the fragment one.
+      m = {j.at("grid"), j.at("gl"),   j.at("gl_device"), j.value("pipeline", "fragment"),
+           j.at("rays"), j.at("runs"), j.at("unbounded"), j.at("configurations")};
       for (const nlohmann::json& r : j.at("rows")) rows.push_back(row_from_json(r));
     } catch (const FileError&) {
       throw;
@@ -32,7 +33,7 @@ SweepResult merge_sweeps(const std::vector<std::string>& shard_dirs) {
     }
     if (!meta) meta = m;
     if (meta_json(m) != meta_json(*meta)) {
-      throw FileError(file.string() + ": another grid, its settings or GL device than " +
+      throw FileError(file.string() + ": another grid, its settings, GL device or pipeline than " +
                       (fs::path(shard_dirs.front()) / "sweep.json").string());
     }
     for (Row& r : rows) {

@@ -3,13 +3,10 @@
 namespace aosuite::ao {
 
 nlohmann::ordered_json meta_json(const SweepMeta& m) {
-  return {{"grid", m.grid},
-          {"rays", m.rays},
-          {"runs", m.runs},
-          {"gl", m.gl},
-          {"gl_device", m.gl_device},
-          {"unbounded", m.unbounded},
-          {"configurations", m.configurations}};
+  return {{"grid", m.grid},           {"rays", m.rays},
+          {"runs", m.runs},           {"gl", m.gl},
+          {"gl_device", m.gl_device}, {"pipeline", m.pipeline},
+          {"unbounded", m.unbounded}, {"configurations", m.configurations}};
 }
 
 }  // namespace aosuite::ao

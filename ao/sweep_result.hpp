@@ -13,6 +13,7 @@ namespace aosuite::ao {
 
 struct SweepMeta {
   std::string grid, gl, gl_device;
+  std::string pipeline;  // fragment|compute: the one the times are of
   int rays = 0, runs = 0;
   bool unbounded = false;
   std::size_t configurations = 0;  // in the whole grid, every shard's rows together

@@ -63,6 +63,7 @@ void sweep_view(rd::Renderer& renderer, const SweepGrid& g, const harness::Selec
           if (samples > 0) s.params.samples = samples;
           s.params.radius = radius, s.params.intensity = intensity;
           s.outputs = rd::parse_outputs("no_ao,ao_float");  // no_ao: the frame error's lighting
+          s.pipeline = g.pipeline;
           const Timed t = render_timed(renderer, scene, view, s, g.runs);
           Row row{i,
                   scene.name,
@@ -107,9 +108,10 @@ SweepResult run_sweep(const SweepGrid& g, const harness::Selection& shard,
         sweep_view(renderer, g, shard, scene, cache, *views[v], v, w, h, index, rows, on_row);
     }
   }
-  return {
-      {g.name, renderer.gl_description(), renderer.gl_source(), g.rays, g.runs, g.unbounded, index},
-      std::move(rows)};
+  return {{g.name, renderer.gl_description(), renderer.gl_source(),
+           std::string(rd::pipeline_name(g.pipeline.value_or(renderer.default_pipeline()))), g.rays,
+           g.runs, g.unbounded, index},
+          std::move(rows)};
 }
 
 }  // namespace aosuite::ao

@@ -148,6 +148,7 @@ class Evaluator {
     rs.params = params;
     rs.params.radius = radius;
     rs.outputs = rd::Outputs{false, false, false, true};
+    rs.pipeline = s_.pipeline;
     return rs;
   }
 

@@ -9,6 +9,7 @@
 
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -24,6 +25,8 @@ struct TuneSettings {
   int rays = 256;  // the reference's rays per pixel
   SearchOptions search;
   std::filesystem::path state;  // the measurements; empty: kept in memory only
+  // Unset: the device's. The timed frames' pipeline; the AO, so the search, is the same in both.
+  std::optional<renderer::Pipeline> pipeline;
 };
 
 // One scene left out: its error under the defaults and under the parameters searched on the

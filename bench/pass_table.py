@@ -2,12 +2,15 @@
 """Per-pass GPU time of every technique, as a Markdown table for bench/README.md.
 
     bench/pass_table.py [--bin build/aosuite] [--scene village] [--view street]
-                        [--runs 20] [--sizes 1920x1080,3840x2160] [-- extra render args]
+                        [--runs 20] [--sizes 1920x1080,3840x2160] [--pipeline fragment]
+                        [--techniques gtao,sao] [-- extra render args]
 
 For each size and technique it runs `aosuite render --outputs all --runs N` (one warm-up
 frame, then N timed frames) and prints the median GPU time of each pass (GL_TIME_ELAPSED) and
-the frame's wall time before read-back. The device is whatever `--gl`/`AOSUITE_GL` pick; the
-table's caption names it. On a GPU machine: `AOSUITE_GL=egl bench/pass_table.py`.
+the frame's wall time before read-back. `--pipeline` picks fragment draws or compute dispatches
+for the screen-space passes (default: the device's, `aosuite gl-info`); the caption names the
+one that ran and the device, whatever `--gl`/`AOSUITE_GL` pick. On a GPU machine:
+`AOSUITE_GL=egl bench/pass_table.py --pipeline compute`.
 """
 import argparse
 import json
@@ -32,6 +35,8 @@ def render(args, technique, width, height, out):
            "--runs", str(args.runs), "--out", out] + args.extra
     if args.view:
         cmd += ["--view", args.view]
+    if args.pipeline:
+        cmd += ["--pipeline", args.pipeline]
     subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL)
     return json.loads(next(Path(out).glob(f"*_{technique}.json")).read_text())
 
@@ -43,23 +48,30 @@ def main():
     p.add_argument("--view", default="")
     p.add_argument("--runs", type=int, default=20)
     p.add_argument("--sizes", default="1920x1080,3840x2160")
+    p.add_argument("--pipeline", choices=["fragment", "compute"],
+                   help="the screen-space passes' pipeline (default: the device's)")
+    p.add_argument("--techniques", default="",
+                   help="comma-separated (default: every registered technique)")
     p.add_argument("extra", nargs="*", help="more `render` arguments, after --")
     args = p.parse_args()
-    device = None
+    device = pipeline = None
+    names = args.techniques.split(",") if args.techniques else techniques(args.bin)
     for size in args.sizes.split(","):
         width, height = (int(v) for v in size.split("x"))
         rows = []
-        for technique in techniques(args.bin):
+        for technique in names:
             with tempfile.TemporaryDirectory() as out:
                 j = render(args, technique, width, height, out)
             device = f"{j['gl_device']}: {j['gl']}"
+            pipeline = j["pipeline"]
             ms = j["median_ms"]
             ao = sum(v for k, v in ms.items() if k not in ("gbuffer", "blur", "blend", "frame_wall"))
             rows.append((technique, ms.get("gbuffer", 0), ao, ms.get("blur", 0),
                          ms.get("blend", 0), ms["frame_wall"],
                          ", ".join(f"{k} {v:.3f}" for k, v in ms.items()
                                    if k not in ("gbuffer", "blur", "blend", "frame_wall", "ao"))))
-        print(f"\n{args.scene} {width}x{height}, median of {args.runs} frames, {device}\n")
+        print(f"\n{args.scene} {width}x{height}, {pipeline} pipeline, median of {args.runs} frames, "
+              f"{device}\n")
         print("| technique | G-buffer ms | AO ms | blur ms | blend ms | frame wall ms | AO sub-passes |")
         print("| --- | --- | --- | --- | --- | --- | --- |")
         for r in rows:

@@ -1,4 +1,5 @@
-// Each renderer pass per technique, GTAO's exact_plane path, and the savings of skipping work:
+// Each renderer pass per technique and pipeline (fragment draws or compute dispatches, the same
+// images), GTAO's exact_plane path, and the savings of skipping work:
 // only the no-AO image asked for, MSSAO with zero-weight coarse levels, and a frame that is
 // mostly sky.
 // The "gl" line of the context names the device: on llvmpipe read the figures as relative
@@ -45,9 +46,11 @@ rd::RenderSettings settings(rd::Technique t, int width, int height) {
   return s;
 }
 
-void BM_Frame(benchmark::State& state, rd::Technique t) {
+void BM_Frame(benchmark::State& state, rd::Technique t, rd::Pipeline pipeline) {
   const auto w = static_cast<int>(state.range(0)), h = w * 9 / 16;
-  run(state, village(), village().views[0], settings(t, w, h));
+  rd::RenderSettings s = settings(t, w, h);
+  s.pipeline = pipeline;
+  run(state, village(), village().views[0], s);
 }
 
 void BM_OnlyNoAoImage(benchmark::State& state) {  // saving: AO and blur not run
@@ -77,15 +80,20 @@ void BM_MostlySky(benchmark::State& state) {  // saving: background pixels skip 
   run(state, village(), up, settings(rd::Technique::kAlchemy, 640, 360));
 }
 
-// One frame benchmark per registered technique (renderer/technique.hpp), so a new technique is
-// measured without an edit here. PMI's first frame (the warm-up) builds its cached maps.
+// One frame benchmark per registered technique (renderer/technique.hpp) and pipeline,
+// BM_Frame/TECHNIQUE/PIPELINE/WIDTH, so a new technique is measured without an edit here. PMI's
+// first frame (the warm-up) builds its cached maps; its own pass is rasterised in both.
 const bool kFramesRegistered = [] {
   for (const rd::TechniqueInfo& t : rd::techniques()) {
-    benchmark::RegisterBenchmark(("BM_Frame/" + std::string(t.name)).c_str(), BM_Frame, t.id)
-        ->Arg(640)
-        ->Arg(1920)
-        ->Arg(3840)
-        ->Unit(benchmark::kMillisecond);
+    for (rd::Pipeline p : {rd::Pipeline::kFragment, rd::Pipeline::kCompute}) {
+      const std::string name =
+          "BM_Frame/" + std::string(t.name) + "/" + std::string(rd::pipeline_name(p));
+      benchmark::RegisterBenchmark(name.c_str(), BM_Frame, t.id, p)
+          ->Arg(640)
+          ->Arg(1920)
+          ->Arg(3840)
+          ->Unit(benchmark::kMillisecond);
+    }
   }
   return true;
 }();

@@ -28,6 +28,13 @@ void add_case_options(CLI::App* cmd, ao::CaseOptions& o) {
                   "the technique's parameters from a preset file (technique = \"...\", [params]) "
                   "or a built-in preset (tuned), applied before --samples, --radius and --param");
   cmd->add_option("--param", o.params, "KEY=VALUE, repeatable; keys:" + keys);
+  add_pipeline_option(cmd, o.pipeline);
+}
+
+void add_pipeline_option(CLI::App* cmd, std::string& pipeline) {
+  cmd->add_option("--pipeline", pipeline,
+                  "fragment|compute: the screen-space passes drawn or dispatched (the same "
+                  "images); default: the device's (`aosuite gl-info`)");
 }
 
 void write_exr(const fs::path& path, const cv::Mat& image) {

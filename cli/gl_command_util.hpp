@@ -12,9 +12,12 @@
 
 namespace aosuite::cli {
 
-// --scene, --view, --technique, --width, --height, --samples, --radius, --param: what `render`
-// and `error` both take.
+// --scene, --view, --technique, --width, --height, --samples, --radius, --param, --pipeline:
+// what `render` and `error` both take.
 void add_case_options(CLI::App* cmd, ao::CaseOptions& o);
+
+// --pipeline fragment|compute (renderer::Pipeline) into `pipeline`; left empty when not given.
+void add_pipeline_option(CLI::App* cmd, std::string& pipeline);
 
 // A CV_32F single-channel image as float EXR, written atomically; throws FileError.
 void write_exr(const std::filesystem::path& path, const cv::Mat& image);

@@ -1,6 +1,7 @@
 // `aosuite gl-info`: every OpenGL backend and device this machine can open, what each gives
 // (vendor, renderer, version, whether it meets the 4.5 core requirement), and which one the
-// GL commands would render with under the current --gl / AOSUITE_GL settings.
+// GL commands would render with under the current --gl / AOSUITE_GL settings, and in which
+// pipeline (fragment or compute) when a command names none.
 #include <fmt/format.h>
 
 #include <memory>
@@ -8,6 +9,7 @@
 
 #include "cli/commands.hpp"
 #include "renderer/gl/gl_context.hpp"
+#include "renderer/renderer.hpp"
 
 namespace aosuite::cli {
 namespace {
@@ -17,8 +19,11 @@ namespace rd = aosuite::renderer;
 int run_gl_info(bool json) {
   const std::vector<rd::GlProbe> probes = rd::probe_gl_backends();
   std::string selected, error;
+  rd::Pipeline pipeline = rd::Pipeline::kFragment;
   try {
-    selected = rd::make_gl_context(rd::gl_choice())->source();
+    const rd::Renderer renderer;  // its default pipeline is the device's
+    selected = renderer.gl_source();
+    pipeline = renderer.default_pipeline();
   } catch (const std::exception& e) {
     error = e.what();
   }
@@ -39,6 +44,7 @@ int run_gl_info(bool json) {
     j["osmesa_built"] = rd::osmesa_built();
     if (error.empty()) {
       j["selected"] = selected;
+      j["pipeline"] = rd::pipeline_name(pipeline);
     } else {
       j["error"] = error;
     }
@@ -54,6 +60,8 @@ int run_gl_info(bool json) {
     if (!rd::osmesa_built()) fmt::print("OSMesa                     not built\n");
     if (error.empty()) {
       fmt::print("renders with: {}\n", selected);
+      fmt::print("pipeline: {} (the default on this device; --pipeline fragment|compute)\n",
+                 rd::pipeline_name(pipeline));
     } else {
       fmt::print(stderr, "aosuite gl-info: {}\n", error);
     }

@@ -15,6 +15,7 @@
 #include "ao/sweep_report.hpp"
 #include "ao/sweep_run.hpp"
 #include "cli/commands.hpp"
+#include "cli/gl_command_util.hpp"
 #include "harness/runner.hpp"
 #include "image/image_io.hpp"
 
@@ -22,6 +23,7 @@ namespace aosuite::cli {
 namespace {
 
 namespace fs = std::filesystem;
+namespace rd = aosuite::renderer;
 
 // "1280x720" -> {1280, 720}; throws std::invalid_argument otherwise.
 std::pair<int, int> parse_size(const std::string& text) {
@@ -57,6 +59,7 @@ void write_sweep(const fs::path& dir, const ao::SweepResult& sweep, const std::s
 struct SweepArgs {
   std::string grid, out = "reports/sweep", shard, preset;
   std::vector<std::string> resolutions, scenes, merge;
+  std::string pipeline;
 };
 
 int run_sweep(const SweepArgs& a) {
@@ -65,6 +68,7 @@ int run_sweep(const SweepArgs& a) {
       ao::is_preset_file(a.preset) ? std::filesystem::absolute(a.preset).string() : a.preset;
   ao::SweepGrid g = ao::read_sweep_grid(a.grid, preset);
   if (!a.scenes.empty()) g.scenes = a.scenes;
+  if (!a.pipeline.empty()) g.pipeline = rd::parse_pipeline(a.pipeline);
   if (!a.resolutions.empty()) {
     g.resolutions.clear();
     for (const std::string& r : a.resolutions) g.resolutions.push_back(parse_size(r));
@@ -98,6 +102,7 @@ void add_sweep_command(CLI::App& app, int& rc) {
       "sweep", "Time and error of each technique over a samples x radius x resolution grid");
   cmd->add_option("grid", a->grid, "grid file (suites/sweep_ci.toml, suites/sweep_full.toml)");
   cmd->add_option("--out", a->out, "output directory")->capture_default_str();
+  add_pipeline_option(cmd, a->pipeline);
   cmd->add_option("--resolution", a->resolutions,
                   "WxH, repeatable: replaces the grid's resolutions");
   cmd->add_option("--scene", a->scenes,

@@ -12,6 +12,7 @@
 #include "ao/preset.hpp"
 #include "ao/tune_run.hpp"
 #include "cli/commands.hpp"
+#include "cli/gl_command_util.hpp"
 #include "common/file_io.hpp"
 #include "renderer/scene/scene.hpp"
 #include "renderer/scene/scene_file.hpp"
@@ -25,6 +26,7 @@ struct TuneArgs {
   std::string technique, out, json;
   std::vector<std::string> scenes;
   std::string state;  // default: beside --out
+  std::string pipeline;
   ao::TuneSettings s;
 };
 
@@ -157,6 +159,7 @@ int run_tune(TuneArgs& a) {
   if (a.out.empty()) a.out = fmt::format("reports/tune/{}.toml", a.technique);
   if (a.state.empty()) a.state = a.out + ".state.json";
   a.s.state = a.state;
+  if (!a.pipeline.empty()) a.s.pipeline = rd::parse_pipeline(a.pipeline);
   const bool tty = isatty(fileno(stderr));
   const ao::TuneResult r = ao::run_tune(a.s, [&](const ao::TuneProgress& p) {
     // One line per stage on a pipe; the running best in place on a terminal.
@@ -205,6 +208,7 @@ void add_tune_command(CLI::App& app, int& rc) {
   cmd->add_option("--state", a->state,
                   "the measurements, reused by a rerun (default: the preset's name + .state.json)");
   cmd->add_option("--json", a->json, "write the result as JSON");
+  add_pipeline_option(cmd, a->pipeline);
   guarded(cmd, rc, "tune", [a] { return run_tune(*a); });
 }
 

@@ -13,7 +13,7 @@ inline float srgb_to_linear(float c) {
   return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
 }
 
-// Linear -> encoded, clamped to [0, 1] first (blend.frag's to_srgb on an 8-bit target).
+// Linear -> encoded, clamped to [0, 1] first (blend.glsl's to_srgb on an 8-bit target).
 inline float linear_to_srgb(float c) {
   c = std::clamp(c, 0.0f, 1.0f);
   return c < 0.0031308f ? c * 12.92f : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;

@@ -10,7 +10,7 @@
 namespace aosuite::reference {
 namespace {
 
-// blend.frag's to_srgb, then 8 bits as the GL read-back rounds them.
+// blend.glsl's to_srgb, then 8 bits as the GL read-back rounds them.
 unsigned char to_srgb8(float c) {
   return static_cast<unsigned char>(std::lround(linear_to_srgb(c) * 255.0f));
 }

@@ -1,6 +1,6 @@
 // The perceptual error of the whole frame, not only of the AO term: a technique's final image
 // against the same lit scene shaded with the ray-traced AO. Both are shaded here, the same way
-// as renderer/passes/shaders/blend.frag (linear lit colour times AO, sRGB-encoded; sky untouched),
+// as renderer/passes/shaders/blend.glsl (linear lit colour times AO, sRGB-encoded; sky untouched),
 // from the one no-AO image, so the two differ only by their AO.
 #pragma once
 

@@ -85,6 +85,25 @@ void bind_textures(GLuint program, std::initializer_list<std::pair<const char*, 
   }
 }
 
+Program make_pixel_program(const char* file) {
+  return make_program({file}, "#define PIXEL_GROUP " + std::to_string(kPixelGroup) + "\n");
+}
+
+void dispatch_pixels(GLuint program, std::initializer_list<std::pair<GLuint, GLenum>> images,
+                     int width, int height) {
+  glUseProgram(program);
+  GLuint unit = 0;
+  for (const auto& [tex, format] : images) {
+    glBindImageTexture(unit++, tex, 0, GL_FALSE, 0, GL_WRITE_ONLY, format);
+  }
+  const auto groups = [](int n) {
+    return static_cast<GLuint>((n + kPixelGroup - 1) / kPixelGroup);
+  };
+  glDispatchCompute(groups(width), groups(height), 1);
+  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT |
+                  GL_FRAMEBUFFER_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
+}
+
 PassTimer::PassTimer(std::string name) : name_(std::move(name)) {
   GLuint id = 0;
   glCreateQueries(GL_TIME_ELAPSED, 1, &id);

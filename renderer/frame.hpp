@@ -56,6 +56,18 @@ void draw_fullscreen(GLuint fb, int width, int height);
 // shaded. Colour attachment 0 is first cleared to 1, the AO of the sky.
 void draw_geometry_pixels(GLuint fb, int width, int height);
 
+// The compute passes' workgroups: kPixelGroup x kPixelGroup invocations, one per pixel.
+inline constexpr int kPixelGroup = 8;
+
+// Links compute shader `file` with PIXEL_GROUP defined as kPixelGroup (its local size).
+Program make_pixel_program(const char* file);
+
+// Binds `images` (texture, format) to image units 0..n-1 for writing, makes `program` current
+// and dispatches workgroups over width x height pixels; then orders those writes before what
+// reads them next (texel fetches, framebuffer use, read-back), as a draw's would be.
+void dispatch_pixels(GLuint program, std::initializer_list<std::pair<GLuint, GLenum>> images,
+                     int width, int height);
+
 struct PassTime {
   std::string pass;
   double gpu_ms = 0;  // GL_TIME_ELAPSED

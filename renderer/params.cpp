@@ -48,7 +48,7 @@ const ParamSpec kParams[] = {
      {}},
     {"radius_scale",
      "multiplies the radius the kernel reaches; the reference keeps the radius (XeGTAO's radius "
-     "multiplier, which gtao.frag applies besides)",
+     "multiplier, which gtao.glsl applies besides)",
      screen_space,
      +[](AoParams& p) -> float& { return p.radius_scale; },
      0,

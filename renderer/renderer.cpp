@@ -50,8 +50,9 @@ struct Renderer::State {
   std::unique_ptr<GlContext> context = make_gl_context(gl_choice());
   GBufferPass gbuffer_pass;
   BlurPass blur_pass;
-  BlendPass blend_pass;
-  std::map<Technique, std::unique_ptr<AoPass>> ao_passes;
+  // Per pipeline, compiled on first use.
+  std::map<Pipeline, std::unique_ptr<BlendPass>> blend_passes;
+  std::map<std::pair<Technique, Pipeline>, std::unique_ptr<AoPass>> ao_passes;
   std::unique_ptr<PmiPass> pmi_pass;  // compiled on first use
   PmiCache pmi_cache;
   // Targets, reallocated when the size changes.
@@ -72,9 +73,15 @@ struct Renderer::State {
     blend_fb = make_framebuffer({no_ao.get(), with_ao.get(), ao_only.get()});
   }
 
-  AoPass& ao_pass(Technique t) {
-    auto& pass = ao_passes[t];
-    if (!pass) pass = make_ao_pass(t);
+  AoPass& ao_pass(Technique t, Pipeline p) {
+    auto& pass = ao_passes[{t, p}];
+    if (!pass) pass = make_ao_pass(t, p);
+    return *pass;
+  }
+
+  const BlendPass& blend_pass(Pipeline p) {
+    auto& pass = blend_passes[p];
+    if (!pass) pass = std::make_unique<BlendPass>(p);
     return *pass;
   }
 };
@@ -118,6 +125,11 @@ Renderer::~Renderer() = default;
 std::string Renderer::gl_description() const { return state_->context->description(); }
 std::string Renderer::gl_source() const { return state_->context->source(); }
 
+// Fragment until a device is measured faster in compute: on llvmpipe GTAO's 1080p frame took
+// 1.06-1.20x as long in compute (bench/README.md, issue 44), and GPUs have not been measured
+// yet (bench/gpu_check.sh). A device measured faster gets its rule here.
+Pipeline Renderer::default_pipeline() const { return Pipeline::kFragment; }
+
 std::shared_ptr<const PmiMaps> Renderer::pmi_maps(const Scene& scene, const PmiSettings& settings) {
   return state_->pmi_cache.get(scene, settings);
 }
@@ -128,6 +140,8 @@ Images Renderer::render(const Scene& scene, const View& view, const RenderSettin
   State& st = *state_;
   if (s.width != st.width || s.height != st.height) st.allocate(s.width, s.height);
   const Camera camera = make_camera(view, s.width, s.height);
+  const Pipeline pipeline = s.pipeline.value_or(default_pipeline());
+  const AoTarget ao_target{st.ao_fb.get(), st.ao.get()};
   const GpuScene gpu_scene(scene);
   Images out;
   std::vector<PassTimer> timers;
@@ -147,7 +161,8 @@ Images Renderer::render(const Scene& scene, const View& view, const RenderSettin
       timers.push_back(st.pmi_pass->run(scene, pmi_override ? *pmi_override : *cached, camera,
                                         s.params, st.ao_fb.get()));
     } else {
-      for (PassTimer& t : st.ao_pass(s.technique).run(st.gbuffer, camera, s.params, st.ao_fb.get()))
+      for (PassTimer& t :
+           st.ao_pass(s.technique, pipeline).run(st.gbuffer, camera, s.params, ao_target))
         timers.push_back(std::move(t));
     }
     if (s.params.blur != Blur::kNone) {
@@ -155,10 +170,13 @@ Images Renderer::render(const Scene& scene, const View& view, const RenderSettin
     }
   }
   if (s.outputs.no_ao || s.outputs.with_ao || s.outputs.ao_only) {
-    timers.push_back(st.blend_pass.run(st.gbuffer, want_ao ? st.ao.get() : 0, st.blend_fb.get()));
+    const BlendTarget target{st.blend_fb.get(),
+                             {st.no_ao.get(), st.with_ao.get(), st.ao_only.get()}};
+    timers.push_back(st.blend_pass(pipeline).run(st.gbuffer, want_ao ? st.ao.get() : 0, target));
   }
   glFinish();
   out.frame_ms = now_ms() - start_ms;
+  out.pipeline = pipeline;
   check_gl("render");
   for (const PassTimer& t : timers) out.times.push_back(t.read());
 

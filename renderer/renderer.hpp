@@ -4,6 +4,7 @@
 #include <map>
 #include <memory>
 #include <opencv2/core.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,9 @@ struct RenderSettings {
   Technique technique = Technique::kAlchemy;
   AoParams params = default_params(Technique::kAlchemy);
   Outputs outputs;
+  // Fragment draws or compute dispatches for the screen-space passes; unset: the device's
+  // default (Renderer::default_pipeline). The images are the same either way.
+  std::optional<Pipeline> pipeline;
 };
 
 // The depth and view-space normal alone, no AO and no images: the G-buffer a ray-traced
@@ -42,6 +46,7 @@ struct Images {
   cv::Mat normal;               // CV_32FC3 view-space unit normal (x, y, z); Outputs::normal
   std::vector<PassTime> times;  // each pass's GPU time
   double frame_ms = 0;          // wall time from the first pass's submission to the last one's end
+  Pipeline pipeline = Pipeline::kFragment;  // the one that ran
 };
 
 class Renderer {
@@ -52,6 +57,9 @@ class Renderer {
   ~Renderer();
   std::string gl_description() const;  // "vendor | renderer | version"
   std::string gl_source() const;       // the backend and device, e.g. "EGL device 0 (software)"
+  // The pipeline a frame runs when its settings name none: the faster one on this device where
+  // it was measured (bench/README.md).
+  Pipeline default_pipeline() const;
   // `pmi_override`: for Technique::kPmi, draw these maps' per-vertex values instead of the
   // scene's own PMI (how `aosuite pmi-study` shows ray-traced per-vertex AO the same way).
   Images render(const Scene& scene, const View& view, const RenderSettings& settings,

@@ -6,19 +6,25 @@
 
 namespace aosuite::renderer {
 
-// Each screen-space technique's pass, in its own file.
-std::unique_ptr<AoPass> make_alchemy_pass();  // ao_pass.cpp
-std::unique_ptr<AoPass> make_ue4_pass();      // ao_pass.cpp
-std::unique_ptr<AoPass> make_sao_pass();      // sao_pass.cpp
-std::unique_ptr<AoPass> make_mssao_pass();    // mssao_pass.cpp
-std::unique_ptr<AoPass> make_gtao_pass();     // gtao_pass.cpp
-std::unique_ptr<AoPass> make_bitmask_pass();  // bitmask_pass.cpp
+// Each screen-space technique's passes, fragment and compute, in its own file.
+std::unique_ptr<AoPass> make_alchemy_pass();          // ao_pass.cpp
+std::unique_ptr<AoPass> make_alchemy_compute_pass();  // ao_pass.cpp
+std::unique_ptr<AoPass> make_ue4_pass();              // ao_pass.cpp
+std::unique_ptr<AoPass> make_ue4_compute_pass();      // ao_pass.cpp
+std::unique_ptr<AoPass> make_sao_pass();              // sao_pass.cpp
+std::unique_ptr<AoPass> make_sao_compute_pass();      // sao_pass.cpp
+std::unique_ptr<AoPass> make_mssao_pass();            // mssao_pass.cpp
+std::unique_ptr<AoPass> make_mssao_compute_pass();    // mssao_pass.cpp
+std::unique_ptr<AoPass> make_gtao_pass();             // gtao_pass.cpp
+std::unique_ptr<AoPass> make_gtao_compute_pass();     // gtao_pass.cpp
+std::unique_ptr<AoPass> make_bitmask_pass();          // bitmask_pass.cpp
+std::unique_ptr<AoPass> make_bitmask_compute_pass();  // bitmask_pass.cpp
 
 namespace {
 
 // Depth fetches per pixel (TechniqueInfo::depth_taps), read off each shader's loops.
-int tap_count(const AoParams& p) { return p.samples; }         // alchemy.frag, sao.frag
-int ue4_taps(const AoParams& p) { return p.samples * 2 * 3; }  // ue4.frag: 2 sides, kSteps 3
+int tap_count(const AoParams& p) { return p.samples; }         // alchemy.glsl, sao.glsl
+int ue4_taps(const AoParams& p) { return p.samples * 2 * 3; }  // ue4.glsl: 2 sides, kSteps 3
 int slice_taps(const AoParams& p) { return p.gtao.slices * p.gtao.steps * 2; }  // per side
 int no_taps(const AoParams&) { return 0; }
 // Each weighted level runs Alchemy's taps over a quarter of the pixels of the level above.
@@ -42,16 +48,16 @@ constexpr TechniqueInfo kTechniques[] = {
        p.samples = 16, p.radius = 1, p.bias = 0.002f;  // beta: Unity URP's 0.002 per unit depth
        return p;
      },
-     tap_count, make_alchemy_pass},
+     tap_count, make_alchemy_pass, make_alchemy_compute_pass},
     {Technique::kSao, "sao", "Scalable AO (McGuire et al. 2012)", Space::kScreen, Sampling::kTaps,
      [] {
        AoParams p;
-       // SAO::Settings' bias 0.012; sao.frag subtracts bias * radius, so this is the published
+       // SAO::Settings' bias 0.012; sao.glsl subtracts bias * radius, so this is the published
        // 0.012 scene units at r = 1 and the same share of the radius at any scene scale.
        p.samples = 8, p.radius = 10, p.bias = 0.012f;
        return p;
      },
-     tap_count, make_sao_pass},
+     tap_count, make_sao_pass, make_sao_compute_pass},
     {Technique::kMssao, "mssao", "Multi-Scale AO (Hoang & Low 2012)", Space::kScreen,
      Sampling::kTaps,
      [] {
@@ -59,7 +65,7 @@ constexpr TechniqueInfo kTechniques[] = {
        p.samples = 16, p.radius = 2, p.bias = 0.002f;
        return p;
      },
-     mssao_taps, make_mssao_pass},
+     mssao_taps, make_mssao_pass, make_mssao_compute_pass},
     {Technique::kUe4, "ue4", "UE4 AO (Mittring 2012)", Space::kScreen, Sampling::kTaps,
      [] {
        AoParams p;
@@ -67,7 +73,7 @@ constexpr TechniqueInfo kTechniques[] = {
        p.samples = 8, p.radius = 0.05f, p.bias = 0.03f, p.intensity = 0.5f, p.contrast = 2;
        return p;
      },
-     ue4_taps, make_ue4_pass},
+     ue4_taps, make_ue4_pass, make_ue4_compute_pass},
     {Technique::kGtao, "gtao", "Ground-Truth AO (Jimenez et al. 2016), XeGTAO's High preset",
      Space::kScreen, Sampling::kSlices,
      [] {
@@ -76,7 +82,7 @@ constexpr TechniqueInfo kTechniques[] = {
        p.radius = 0.5f, p.contrast = 2.2f;
        return p;
      },
-     slice_taps, make_gtao_pass},
+     slice_taps, make_gtao_pass, make_gtao_compute_pass},
     {Technique::kBitmask, "bitmask",
      "visibility-bitmask AO (Therrien et al. 2023): GTAO's slices with thickness", Space::kScreen,
      Sampling::kSlices,
@@ -87,9 +93,9 @@ constexpr TechniqueInfo kTechniques[] = {
        p.radius = 0.5f;
        return p;
      },
-     slice_taps, make_bitmask_pass},
+     slice_taps, make_bitmask_pass, make_bitmask_compute_pass},
     {Technique::kPmi, "pmi", "viewpoint-based AO, polygonal mutual information (Gonzalez 2008)",
-     Space::kObject, Sampling::kNone, [] { return AoParams{}; }, no_taps, nullptr},
+     Space::kObject, Sampling::kNone, [] { return AoParams{}; }, no_taps, nullptr, nullptr},
 };
 
 }  // namespace
@@ -134,6 +140,17 @@ Blur parse_blur(std::string_view name) {
   if (name == "bilateral") return Blur::kBilateral;
   throw std::invalid_argument("unknown blur '" + std::string(name) +
                               "' (expected none, gaussian or bilateral)");
+}
+
+Pipeline parse_pipeline(std::string_view name) {
+  if (name == "fragment") return Pipeline::kFragment;
+  if (name == "compute") return Pipeline::kCompute;
+  throw std::invalid_argument("unknown pipeline '" + std::string(name) +
+                              "' (expected fragment or compute)");
+}
+
+std::string_view pipeline_name(Pipeline p) {
+  return p == Pipeline::kCompute ? "compute" : "fragment";
 }
 
 std::string_view blur_name(Blur b) {

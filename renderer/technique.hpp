@@ -17,6 +17,15 @@ namespace aosuite::renderer {
 enum class Technique { kAlchemy, kSao, kMssao, kUe4, kPmi, kGtao, kBitmask };
 
 enum class Blur { kNone, kGaussian, kBilateral };
+
+// How the screen-space passes run: draws whose pixels the rasteriser shades (fragment), or
+// compute dispatches over the image (compute). Both run the same estimator code (a technique's
+// .glsl, included by its .frag and .comp) and write the same AO texture, which the blur and
+// blend read. Compute exists for GPUs whose fragment shading runs on few units (Hopper:
+// bench/README.md); the G-buffer and PMI's maps are rasterised in either.
+enum class Pipeline { kFragment, kCompute };
+Pipeline parse_pipeline(std::string_view name);  // fragment|compute
+std::string_view pipeline_name(Pipeline p);
 Blur parse_blur(std::string_view name);  // none|gaussian|bilateral
 std::string_view blur_name(Blur b);
 
@@ -92,8 +101,10 @@ struct TechniqueInfo {
   // Depth fetches per pixel of the AO pass at these parameters: the cost `aosuite tune`'s
   // budget holds (GTAO's High preset: 3 slices x 3 steps x 2 sides = 18). 0 for object space.
   int (*depth_taps)(const AoParams&);
-  // The screen-space pass; null for object-space techniques, which the Renderer runs itself.
-  std::unique_ptr<AoPass> (*make_pass)();
+  // The screen-space pass of each pipeline, the same estimator drawn or dispatched; null for
+  // object-space techniques, which the Renderer runs itself (rasterised in both pipelines).
+  std::unique_ptr<AoPass> (*make_fragment_pass)();
+  std::unique_ptr<AoPass> (*make_compute_pass)();
 };
 
 // Every technique, in the order help text and tests list them.

@@ -15,11 +15,11 @@ namespace aosuite::test {
 inline void write_broken_shaders(const std::filesystem::path& dir) {
   std::filesystem::copy(
       std::filesystem::path(AOSUITE_SOURCE_DIR) / "renderer" / "passes" / "shaders", dir);
-  std::string sao = read_text(dir / "sao.frag");
+  std::string sao = read_text(dir / "sao.glsl");
   const std::string term = "1.0 - sum * u_intensity";
-  ASSERT_NE(sao.find(term), std::string::npos) << "sao.frag changed; update this test";
+  ASSERT_NE(sao.find(term), std::string::npos) << "sao.glsl changed; update this test";
   sao.replace(sao.find(term), term.size(), "1.0 - 2.0 * sum * u_intensity");
-  std::ofstream(dir / "sao.frag") << sao;
+  std::ofstream(dir / "sao.glsl") << sao;
 }
 
 }  // namespace aosuite::test

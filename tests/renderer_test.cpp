@@ -172,30 +172,35 @@ Scene scaled_scene(const std::string& name, float scale, float near_ratio) {
   return scene;
 }
 
-// settings() at radius 0.5 with every parameter in scene units scaled with the scene: the
-// radius, and bitmask's thickness. SAO's bias is a share of the radius and the others' biases
-// are per unit depth or sines, so they stay.
-RenderSettings scaled_settings(Technique t, float scale, Blur blur = Blur::kNone,
-                               bool exact_plane = false) {
-  RenderSettings rs = settings(t, 0.5f * scale, blur);
-  rs.params.bitmask.thickness *= scale;
-  rs.params.gtao.exact_plane = exact_plane;
-  return rs;
-}
-
-// What the stress tests run: every technique at its defaults, and GTAO's other sampling path.
+// What the stress tests run: every technique at its defaults in both pipelines, and GTAO's
+// other sampling path.
 struct Variant {
   Technique t;
   bool exact_plane;
+  Pipeline pipeline;
   std::string name() const {
-    return std::string(technique_name(t)) + (exact_plane ? " exact_plane" : "");
+    return std::string(technique_name(t)) + (exact_plane ? " exact_plane" : "") +
+           (pipeline == Pipeline::kCompute ? " compute" : "");
   }
 };
 std::vector<Variant> stress_variants() {
   std::vector<Variant> out;
-  for (Technique t : kAll) out.push_back({t, false});
-  out.push_back({Technique::kGtao, true});
+  for (Pipeline p : {Pipeline::kFragment, Pipeline::kCompute}) {
+    for (Technique t : kAll) out.push_back({t, false, p});
+    out.push_back({Technique::kGtao, true, p});
+  }
   return out;
+}
+
+// settings() at radius 0.5 with every parameter in scene units scaled with the scene: the
+// radius, and bitmask's thickness. SAO's bias is a share of the radius and the others' biases
+// are per unit depth or sines, so they stay.
+RenderSettings scaled_settings(const Variant& var, float scale, Blur blur = Blur::kNone) {
+  RenderSettings rs = settings(var.t, 0.5f * scale, blur);
+  rs.params.bitmask.thickness *= scale;
+  rs.params.gtao.exact_plane = var.exact_plane;
+  rs.pipeline = var.pipeline;
+  return rs;
 }
 
 // The stress matrix: every technique at scene scales 1e-3..1e4 and near planes from 1e-6
@@ -208,7 +213,7 @@ TEST(RendererStress, ScalesAndNearPlanes) {
       for (const Variant& var : stress_variants()) {
         const Scene plane = scaled_scene("plane", scale, near);
         const Scene corner = scaled_scene("corner", scale, near);
-        const RenderSettings rs = scaled_settings(var.t, scale, Blur::kNone, var.exact_plane);
+        const RenderSettings rs = scaled_settings(var, scale);
         const std::string what =
             var.name() + " scale " + std::to_string(scale) + " near " + std::to_string(near);
         Stats open, crease;
@@ -243,9 +248,7 @@ TEST(RendererStress, SameAoAtEveryScale) {
   for (const Variant& var : stress_variants()) {
     for (Blur blur : {Blur::kNone, Blur::kBilateral}) {
       double worst_exact = 0, worst_decimal = 0, worst_mean = 0, worst_share = 1;
-      const auto at = [&](float scale) {
-        return scaled_settings(var.t, scale, blur, var.exact_plane);
-      };
+      const auto at = [&](float scale) { return scaled_settings(var, scale, blur); };
       for (const auto& [name, view] : views) {
         const Images one = render(scaled_scene(name, 1, 0.01f), view, at(1));
         const Stats at_one = geometry_stats(one);
@@ -627,16 +630,18 @@ TEST(Renderer, AoUniformBlockMatchesTheShadersLayout) {
                                   offsetof(AoUniformBlock, falloff_range),
                                   offsetof(AoUniformBlock, thin_occluder),
                                   offsetof(AoUniformBlock, thickness)};
-  // Every full-screen fragment shader that declares the block, found by linking each: a new
-  // estimator is checked without an edit here. (One written for another vertex stage does not
-  // link with fullscreen.vert; no estimator is, and the count below would miss it.)
+  // Every full-screen fragment shader and per-pixel compute shader that declares the block,
+  // found by linking each: a new estimator is checked in both pipelines without an edit here.
+  // (One written for another vertex stage, or a compute shader needing other defines such as
+  // blur.comp, does not link; no estimator is, and the count below would miss it.)
   std::size_t checked = 0;
   for (std::string_view name : shader_names()) {
-    if (!name.ends_with(".frag")) continue;
-    const std::string fragment(name);
+    if (!name.ends_with(".frag") && !name.ends_with(".comp")) continue;
+    const std::string file(name);
     std::optional<Program> linked;
     try {
-      linked.emplace(make_program({"fullscreen.vert", fragment.c_str()}));
+      linked.emplace(name.ends_with(".comp") ? make_pixel_program(file.c_str())
+                                             : make_program({"fullscreen.vert", file.c_str()}));
     } catch (const std::exception&) {
       continue;
     }
@@ -647,13 +652,14 @@ TEST(Renderer, AoUniformBlockMatchesTheShadersLayout) {
     ++checked;
     for (std::size_t i = 0; i < std::size(names); ++i) {
       // std140 keeps every member of a used block active, so each one has its offset.
-      ASSERT_NE(indices[i], GL_INVALID_INDEX) << fragment << " " << names[i];
+      ASSERT_NE(indices[i], GL_INVALID_INDEX) << file << " " << names[i];
       GLint offset = -1;
       glGetActiveUniformsiv(program.get(), 1, &indices[i], GL_UNIFORM_OFFSET, &offset);
-      EXPECT_EQ(offset, static_cast<GLint>(expected[i])) << fragment << " " << names[i];
+      EXPECT_EQ(offset, static_cast<GLint>(expected[i])) << file << " " << names[i];
     }
   }
-  EXPECT_GE(checked, screen_space_technique_names().size());  // at least one per estimator
+  // At least one per estimator and pipeline.
+  EXPECT_GE(checked, 2 * screen_space_technique_names().size());
 }
 
 TEST(Renderer, RejectsAbsurdSettings) {

@@ -140,6 +140,37 @@ TEST(SweepCli, ErrorPrintsJsonAndWritesTheReference) {
   }
 }
 
+// `--pipeline` reaches error's and sweep's renders: the compute pipeline measures the same
+// error as the fragment one (the same AO on llvmpipe, compute_pipeline_tests), and both say
+// which ran (sweep.json too: shards of different pipelines do not merge).
+TEST(SweepCli, ErrorAndSweepTakeThePipeline) {
+  const fs::path dir = scratch("pipeline");
+  nlohmann::json errors[2];
+  const char* pipelines[] = {"fragment", "compute"};
+  for (int i = 0; i < 2; ++i) {
+    const Outcome o =
+        run_shell(command(dir,
+                          "error --scene corner --technique gtao --width 48 --height 27 --rays 16 "
+                          "--json --pipeline " +
+                              std::string(pipelines[i])),
+                  dir);
+    ASSERT_EQ(o.rc, 0) << o.err;
+    const auto j = nlohmann::json::parse(o.out);
+    EXPECT_EQ(j["pipeline"], pipelines[i]);
+    errors[i] = j["error"];
+  }
+  EXPECT_EQ(errors[0], errors[1]);
+  const Outcome o =
+      run_shell(command(dir, "sweep " + std::string(AOSUITE_SOURCE_DIR) +
+                                 "/suites/sweep_ci.toml --scene plane --resolution 32x18 "
+                                 "--pipeline compute --out " +
+                                 (dir / "out").string()),
+                dir);
+  ASSERT_EQ(o.rc, 0) << o.err;
+  const auto j = nlohmann::json::parse(std::ifstream(dir / "out" / "sweep.json"));
+  EXPECT_EQ(j["pipeline"], "compute");  // what its times are of
+}
+
 // Fixed parameters reach every configuration of their technique and the outputs name them.
 TEST(SweepCli, FixedParamsApplyToTheirTechnique) {
   const fs::path dir = scratch("params");

@@ -8,20 +8,20 @@ namespace aosuite::renderer {
 
 namespace {
 
-// A technique that is one full-screen draw over the G-buffer's depth and normals (Alchemy,
-// UE4, GTAO); each shader's header has the estimator.
+// A technique that is one pass over the G-buffer's depth and normals (Alchemy, UE4, GTAO,
+// bitmask); each shader's .glsl has the estimator.
 class GBufferAoPass final : public AoPass {
  public:
-  explicit GBufferAoPass(const char* fragment)
-      : program_(make_program({"fullscreen.vert", fragment})) {}
+  GBufferAoPass(Pipeline pipeline, const std::string& name)
+      : pipeline_(pipeline), program_(make_ao_program(pipeline, name)) {}
   std::vector<PassTimer> run(const GBuffer& g, const Camera& camera, const AoParams& params,
-                             GLuint out_fb) override {
+                             const AoTarget& out) override {
     PassTimer timer("ao");
     const GLuint p = program_.get();
     set_camera_uniforms(p, camera);
     uniforms_.upload(ao_uniform_block(params, camera));
     bind_textures(p, {{"u_depth", g.depth.get()}, {"u_normal", g.normal.get()}});
-    draw_geometry_pixels(out_fb, g.width, g.height);
+    write_ao(pipeline_, p, out, g.width, g.height);
     timer.stop();
     std::vector<PassTimer> times;
     times.push_back(std::move(timer));
@@ -29,26 +29,51 @@ class GBufferAoPass final : public AoPass {
   }
 
  private:
+  Pipeline pipeline_;
   Program program_;
   AoUniformBuffer uniforms_;
 };
 
 }  // namespace
 
-std::unique_ptr<AoPass> make_gbuffer_ao_pass(const char* fragment) {
-  return std::make_unique<GBufferAoPass>(fragment);
+Program make_ao_program(Pipeline pipeline, const std::string& name) {
+  if (pipeline == Pipeline::kCompute) return make_pixel_program((name + ".comp").c_str());
+  return make_program({"fullscreen.vert", (name + ".frag").c_str()});
 }
 
-std::unique_ptr<AoPass> make_alchemy_pass() { return make_gbuffer_ao_pass("alchemy.frag"); }
+void write_ao(Pipeline pipeline, GLuint program, const AoTarget& out, int width, int height) {
+  if (pipeline == Pipeline::kCompute) {
+    dispatch_pixels(program, {{out.texture, GL_R32F}}, width, height);
+  } else {
+    glUseProgram(program);
+    draw_geometry_pixels(out.framebuffer, width, height);
+  }
+}
 
-std::unique_ptr<AoPass> make_ue4_pass() { return make_gbuffer_ao_pass("ue4.frag"); }
+std::unique_ptr<AoPass> make_gbuffer_ao_pass(Pipeline pipeline, const std::string& name) {
+  return std::make_unique<GBufferAoPass>(pipeline, name);
+}
 
-std::unique_ptr<AoPass> make_ao_pass(Technique technique) {
+std::unique_ptr<AoPass> make_alchemy_pass() {
+  return make_gbuffer_ao_pass(Pipeline::kFragment, "alchemy");
+}
+std::unique_ptr<AoPass> make_alchemy_compute_pass() {
+  return make_gbuffer_ao_pass(Pipeline::kCompute, "alchemy");
+}
+
+std::unique_ptr<AoPass> make_ue4_pass() { return make_gbuffer_ao_pass(Pipeline::kFragment, "ue4"); }
+std::unique_ptr<AoPass> make_ue4_compute_pass() {
+  return make_gbuffer_ao_pass(Pipeline::kCompute, "ue4");
+}
+
+std::unique_ptr<AoPass> make_ao_pass(Technique technique, Pipeline pipeline) {
   const TechniqueInfo& info = technique_info(technique);
-  if (!info.make_pass) {
+  const auto make =
+      pipeline == Pipeline::kCompute ? info.make_compute_pass : info.make_fragment_pass;
+  if (!make) {
     throw std::invalid_argument(std::string(info.name) + " is not a screen-space technique");
   }
-  return info.make_pass();
+  return make();
 }
 
 }  // namespace aosuite::renderer

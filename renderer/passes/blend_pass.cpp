@@ -2,9 +2,12 @@
 
 namespace aosuite::renderer {
 
-BlendPass::BlendPass() : program_(make_program({"fullscreen.vert", "blend.frag"})) {}
+BlendPass::BlendPass(Pipeline pipeline)
+    : pipeline_(pipeline),
+      program_(pipeline == Pipeline::kCompute ? make_pixel_program("blend.comp")
+                                              : make_program({"fullscreen.vert", "blend.frag"})) {}
 
-PassTimer BlendPass::run(const GBuffer& g, GLuint ao, GLuint out_fb) const {
+PassTimer BlendPass::run(const GBuffer& g, GLuint ao, const BlendTarget& out) const {
   PassTimer timer("blend");
   const GLuint p = program_.get();
   glProgramUniform1i(p, glGetUniformLocation(p, "u_has_ao"), ao != 0);
@@ -12,7 +15,13 @@ PassTimer BlendPass::run(const GBuffer& g, GLuint ao, GLuint out_fb) const {
                     {"u_normal", g.normal.get()},
                     {"u_albedo", g.albedo.get()},
                     {"u_ao", ao ? ao : g.depth.get()}});
-  draw_fullscreen(out_fb, g.width, g.height);
+  if (pipeline_ == Pipeline::kCompute) {
+    dispatch_pixels(
+        p, {{out.images[0], GL_RGBA8}, {out.images[1], GL_RGBA8}, {out.images[2], GL_RGBA8}},
+        g.width, g.height);
+  } else {
+    draw_fullscreen(out.framebuffer, g.width, g.height);
+  }
   timer.stop();
   return timer;
 }

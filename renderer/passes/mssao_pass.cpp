@@ -1,7 +1,8 @@
 // Multi-Scale AO (Hoang & Low 2012) with Alchemy as the per-level estimator: five
 // resolutions, each with its own intensity, combined coarse to fine through a depth- and
 // normal-aware upsampling. Levels coarser than the last non-zero weight are not computed;
-// a zero-weight level in between is only downsampled and passed through.
+// a zero-weight level in between is only downsampled and passed through. In the compute
+// pipeline each draw is a dispatch of the same code (mssao_downsample.glsl, mssao_level.glsl).
 #include <algorithm>
 #include <array>
 
@@ -22,12 +23,13 @@ struct Level {
 
 class MssaoPass final : public AoPass {
  public:
-  MssaoPass()
-      : downsample_(make_program({"fullscreen.vert", "mssao_downsample.frag"})),
-        level_(make_program({"fullscreen.vert", "mssao_level.frag"})) {}
+  explicit MssaoPass(Pipeline pipeline)
+      : pipeline_(pipeline),
+        downsample_(make_ao_program(pipeline, "mssao_downsample")),
+        level_(make_ao_program(pipeline, "mssao_level")) {}
 
   std::vector<PassTimer> run(const GBuffer& g, const Camera& camera, const AoParams& params,
-                             GLuint out_fb) override {
+                             const AoTarget& out) override {
     int top = -1;  // the coarsest level that contributes
     int contributing = 0;
     for (int l = 0; l < kLevels; ++l) {
@@ -36,7 +38,7 @@ class MssaoPass final : public AoPass {
     std::vector<PassTimer> times;
     if (top < 0) {  // every weight 0: no occlusion at all
       const float one = 1;
-      glClearNamedFramebufferfv(out_fb, GL_COLOR, 0, &one);
+      glClearNamedFramebufferfv(out.framebuffer, GL_COLOR, 0, &one);
       return times;
     }
     if (g.width != width_ || g.height != height_) allocate(g.width, g.height);
@@ -48,7 +50,13 @@ class MssaoPass final : public AoPass {
     glProgramUniform1f(d, glGetUniformLocation(d, "u_depth_threshold"), kDepthThreshold);
     for (int l = 1; l <= top; ++l) {
       bind_textures(d, {{"u_depth", depth_of(l - 1)}, {"u_normal", normal_of(l - 1)}});
-      draw_fullscreen(levels_[l].gbuffer_fb.get(), levels_[l].width, levels_[l].height);
+      const Level& lv = levels_[l];
+      if (pipeline_ == Pipeline::kCompute) {
+        dispatch_pixels(d, {{lv.depth.get(), GL_R32F}, {lv.normal.get(), GL_RGBA16F}}, lv.width,
+                        lv.height);
+      } else {
+        draw_fullscreen(lv.gbuffer_fb.get(), lv.width, lv.height);
+      }
     }
     down_timer.stop();
     times.push_back(std::move(down_timer));
@@ -79,10 +87,13 @@ class MssaoPass final : public AoPass {
                         {"u_coarse", levels_[c].result.get()},
                         {"u_coarse_depth", depth_of(c)},
                         {"u_coarse_normal", normal_of(c)}});
+      const Level& lv = levels_[l];
       if (l == 0) {
-        draw_geometry_pixels(out_fb, g.width, g.height);
+        write_ao(pipeline_, p, out, g.width, g.height);
+      } else if (pipeline_ == Pipeline::kCompute) {
+        dispatch_pixels(p, {{lv.result.get(), GL_RG32F}}, lv.width, lv.height);
       } else {
-        draw_fullscreen(levels_[l].result_fb.get(), levels_[l].width, levels_[l].height);
+        draw_fullscreen(lv.result_fb.get(), lv.width, lv.height);
       }
       timer.stop();
       times.push_back(std::move(timer));
@@ -106,6 +117,7 @@ class MssaoPass final : public AoPass {
     }
   }
 
+  Pipeline pipeline_;
   Program downsample_, level_;
   AoUniformBuffer uniforms_;
   std::array<Level, kLevels> levels_;
@@ -114,6 +126,11 @@ class MssaoPass final : public AoPass {
 
 }  // namespace
 
-std::unique_ptr<AoPass> make_mssao_pass() { return std::make_unique<MssaoPass>(); }
+std::unique_ptr<AoPass> make_mssao_pass() {
+  return std::make_unique<MssaoPass>(Pipeline::kFragment);
+}
+std::unique_ptr<AoPass> make_mssao_compute_pass() {
+  return std::make_unique<MssaoPass>(Pipeline::kCompute);
+}
 
 }  // namespace aosuite::renderer

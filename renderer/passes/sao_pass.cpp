@@ -1,5 +1,5 @@
 // Scalable AO (McGuire, Mara, Luebke 2012): a linear-depth pyramid, then the AO pass, which
-// uses depth only (no G-buffer normals).
+// uses depth only (no G-buffer normals). The pyramid is a compute pass in both pipelines.
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -18,12 +18,13 @@ GLuint groups(int n) { return static_cast<GLuint>((n + kGroup - 1) / kGroup); }
 
 class SaoPass final : public AoPass {
  public:
-  SaoPass()
-      : minify_(make_program({"sao_minify.comp"})),
-        ao_(make_program({"fullscreen.vert", "sao.frag"})) {}
+  explicit SaoPass(Pipeline pipeline)
+      : pipeline_(pipeline),
+        minify_(make_program({"sao_minify.comp"})),
+        ao_(make_ao_program(pipeline, "sao")) {}
 
   std::vector<PassTimer> run(const GBuffer& g, const Camera& camera, const AoParams& params,
-                             GLuint out_fb) override {
+                             const AoTarget& out) override {
     if (g.width != width_ || g.height != height_) allocate(g.width, g.height);
     PassTimer pyramid_timer("sao_pyramid");
     // Level 0 is the G-buffer's linear depth, copied into the buffer by the driver.
@@ -47,8 +48,7 @@ class SaoPass final : public AoPass {
     set_camera_uniforms(p, camera);
     uniforms_.upload(ao_uniform_block(params, camera));
     set_level_uniforms(p);
-    glUseProgram(p);
-    draw_geometry_pixels(out_fb, g.width, g.height);
+    write_ao(pipeline_, p, out, g.width, g.height);
     ao_timer.stop();
     std::vector<PassTimer> times;
     times.push_back(std::move(pyramid_timer));
@@ -87,6 +87,7 @@ class SaoPass final : public AoPass {
     }
   }
 
+  Pipeline pipeline_;
   Program minify_, ao_;
   AoUniformBuffer uniforms_;
   Buffer pyramid_;  // sao_pyramid.glsl's layout
@@ -96,6 +97,9 @@ class SaoPass final : public AoPass {
 
 }  // namespace
 
-std::unique_ptr<AoPass> make_sao_pass() { return std::make_unique<SaoPass>(); }
+std::unique_ptr<AoPass> make_sao_pass() { return std::make_unique<SaoPass>(Pipeline::kFragment); }
+std::unique_ptr<AoPass> make_sao_compute_pass() {
+  return std::make_unique<SaoPass>(Pipeline::kCompute);
+}
 
 }  // namespace aosuite::renderer

@@ -1,4 +1,4 @@
-// GTAO's slice and step placement, shared by gtao.frag and bitmask.frag so the two techniques
+// GTAO's slice and step placement, shared by gtao.glsl and bitmask.glsl so the two techniques
 // read the same depth samples per pixel and compare at equal cost.
 
 // Per-pixel noise: the slice angle's offset from a 4x4 Bayer matrix, so any 4x4 block of

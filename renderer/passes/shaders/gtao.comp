@@ -1,0 +1,4 @@
+#version 450 core
+#include "common.glsl"
+#include "gtao.glsl"
+#include "ao_compute.glsl"

@@ -1,0 +1,4 @@
+#version 450 core
+#include "common.glsl"
+#include "sao.glsl"
+#include "ao_compute.glsl"
