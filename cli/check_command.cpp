@@ -165,7 +165,9 @@ void print_progress(const hs::CaseResult& r, int done, int total) {
   if (r.kind == "folder") detail = "  " + r.source + detail;
   fmt::print("[{:>{}}/{}] {:<5} {}{}  {:.2f} s{}{}\n", done, fmt::formatted_size("{}", total),
              total, hs::status_name(r.status), r.id, hs::printable(detail), r.seconds,
-             r.reused ? " (unchanged, reused)" : "",
+             r.reused               ? " (unchanged, reused)"
+             : r.not_reused.empty() ? ""
+                                    : " (" + r.not_reused + ")",
              r.attempts > 1 ? fmt::format(" ({} attempts)", r.attempts) : "");
   std::fflush(stdout);
 }

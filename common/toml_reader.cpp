@@ -97,12 +97,13 @@ glm::vec3 TomlReader::vec3(const toml::node& n, std::string_view what) const {
   return {f(0), f(1), f(2)};
 }
 
-std::vector<std::string> TomlReader::strings(const toml::node& n, std::string_view what) const {
+std::vector<std::string> TomlReader::strings(const toml::node& n, std::string_view what,
+                                             bool allow_empty) const {
   const toml::array* a = n.as_array();
   if (!a) fail(n.source(), fmt::format("{} must be an array of strings", what));
   std::vector<std::string> out;
   for (const toml::node& e : *a) out.push_back(string(e, what));
-  if (out.empty()) fail(n.source(), fmt::format("{} must not be empty", what));
+  if (out.empty() && !allow_empty) fail(n.source(), fmt::format("{} must not be empty", what));
   return out;
 }
 

@@ -35,8 +35,9 @@ class TomlReader {
   // A number() that is positive as a float too (at least the least normal float, 1.2e-38).
   double positive(const toml::node& n, std::string_view what) const;
   glm::vec3 vec3(const toml::node& n, std::string_view what) const;
-  // A non-empty array of strings.
-  std::vector<std::string> strings(const toml::node& n, std::string_view what) const;
+  // An array of strings, non-empty unless `allow_empty` (a list that may say "none").
+  std::vector<std::string> strings(const toml::node& n, std::string_view what,
+                                   bool allow_empty = false) const;
   const toml::table& table(const toml::node& n, std::string_view what) const;
   // A renderer parameter as renderer::set_param takes it: a number or string as text, an
   // array as a comma-separated list.

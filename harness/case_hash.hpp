@@ -10,7 +10,9 @@
 namespace aosuite::harness {
 
 // What an image case's images depend on: its command (before {out} is filled in), fields and
-// params, and the bytes of the files it declares as inputs; for files on disk, their bytes.
+// params, the bytes of its program and of every argument naming a file, the values of the
+// environment variables it declares (`env`) and the bytes of the files it declares as inputs;
+// for files on disk, their bytes.
 std::string image_input_hash(const Case& c);
 
 // Everything a verdict depends on besides the render: the accepted goldens' bytes and names,

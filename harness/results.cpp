@@ -144,6 +144,7 @@ json to_json(const CaseResult& c) {
       {"judge_hash", c.judge_hash},
       {"image_hashes", c.image_hashes},
       {"reused", c.reused},
+      {"not_reused", c.not_reused},
       {"seconds", c.seconds},
       {"bless_command", printable(c.bless_command)}};
 }
@@ -210,6 +211,7 @@ CaseResult case_from_json(const json& j) {
   // Absent in older results: then nothing is reused, which only costs a render.
   c.image_hashes = j.value("image_hashes", std::map<std::string, std::string>{});
   c.reused = j.at("reused"), c.seconds = j.at("seconds");
+  c.not_reused = j.value("not_reused", "");
   c.bless_command = j.at("bless_command");
   return c;
 }

@@ -49,6 +49,9 @@ struct CaseResult {
   // or a run killed before its cache was saved, may have replaced them since).
   std::map<std::string, std::string> image_hashes;
   bool reused = false;  // inputs and goldens unchanged: nothing re-rendered
+  // Why an unchanged-looking case was made again instead of reused ("" when it was not):
+  // a command case that declares neither `inputs` nor `env` is never reused.
+  std::string not_reused;
   double seconds = 0;
   std::string bless_command;   // set for cases that are not passing
   int exit_status = -1;        // a command case's exit status (-1: none ran)

@@ -135,7 +135,7 @@ Cache load_cache(const fs::path& report_dir) {
 void save_cache(const fs::path& report_dir, Cache cache, const std::vector<CaseResult>& ran) {
   for (const CaseResult& r : ran) {
     CaseResult& saved = cache[r.id] = r;
-    saved.seconds = 0, saved.reused = false;
+    saved.seconds = 0, saved.reused = false, saved.not_reused.clear();
   }
   nlohmann::json all = nlohmann::json::array();
   for (const auto& [id, c] : cache) all.push_back(to_json(c));
@@ -295,6 +295,13 @@ std::optional<CaseResult> prepare(Makers& makers, const std::string& environment
   r.input_hash = c.source ? image_input_hash(c) : c.made->input_hash(c, environment);
   std::optional<CaseResult> prev;
   if (const auto it = cache.find(c.id); o.reuse && it != cache.end()) prev = it->second;
+  const bool undeclared = c.source && !c.source->command.empty() && !c.source->declared;
+  if (prev && prev->input_hash == r.input_hash && undeclared) {
+    r.not_reused =
+        "run again: the case declares no inputs or env, so what its command reads "
+        "may have changed";
+    prev.reset();
+  }
   if (prev && prev->input_hash == r.input_hash && reuse_render(c, *prev, case_dir, r, images)) {
     return prev;
   }

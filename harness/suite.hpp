@@ -32,6 +32,10 @@ struct ImageSource {
   std::vector<std::string> command;
   std::vector<std::string> outputs;           // per image: the file the command writes in {out}
   std::vector<std::filesystem::path> inputs;  // files the command reads: their bytes are hashed
+  std::vector<std::string> env;  // environment variables the command reads: their values too
+  // Whether the case says what its command reads (`inputs` or `env`, even empty): a case that
+  // does not is never reused, since anything it reads may have changed.
+  bool declared = false;
   double timeout_seconds = 60;
   std::vector<std::filesystem::path> files;  // per image, without a command: a file on disk
   std::filesystem::path dir;                 // the suite's folder ({suite_dir}), absolute

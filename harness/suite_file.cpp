@@ -248,8 +248,8 @@ struct Common {
   Tolerance tolerance;
 };
 constexpr std::string_view kCommonKeys[] = {"width", "height", "params", "tolerance"};
-constexpr std::string_view kImageCaseKeys[] = {"name",   "command", "outputs",
-                                               "inputs", "timeout", "files"};
+constexpr std::string_view kImageCaseKeys[] = {"name", "command", "outputs", "inputs",
+                                               "env",  "timeout", "files"};
 
 void read_common(const Reader& r, const fs::path& dir, const toml::table& t, Common& c) {
   if (const toml::node* n = t.get("width")) {
@@ -367,18 +367,20 @@ Case image_case(const Reader& r, const fs::path& dir, const toml::table& t, Comm
       k.images.push_back(image_name(r, *outputs, o));
     }
     if (const toml::node* n = t.get("inputs")) {
-      for (const std::string& in : r.strings(*n, "inputs")) {
+      for (const std::string& in : r.strings(*n, "inputs", true)) {
         src->inputs.push_back(dir / in);
         if (!fs::is_regular_file(src->inputs.back())) {
           r.fail(n->source(), "no input file " + printable(src->inputs.back().string()));
         }
       }
     }
+    if (const toml::node* n = t.get("env")) src->env = r.strings(*n, "env", true);
+    src->declared = t.get("inputs") || t.get("env");
     if (const toml::node* n = t.get("timeout")) {
       src->timeout_seconds = r.positive(*n, "timeout");
     }
   } else {
-    for (const char* key : {"outputs", "inputs", "timeout"}) {
+    for (const char* key : {"outputs", "inputs", "env", "timeout"}) {
       if (const toml::node* n = t.get(key)) {
         r.fail(n->source(), std::string("'") + key + "' belongs to a command case");
       }

@@ -497,6 +497,71 @@ outputs = ["x.png"]
       << r.out;
 }
 
+// Reuse is safe by default (issue 40): a command case is run again when what it runs changes,
+// whether or not the suite lists it: an edited script named by an argument, a rebuilt program
+// found on PATH, a declared environment variable; a case that declares nothing it reads is
+// never reused, and says so. Each change here draws another image, so each re-run fails.
+TEST_F(ImageCases, AChangedScriptProgramOrDeclaredVariableIsRunAgainAndFails) {
+  fs::create_directories(dir_ / "bin");
+  const auto write_script = [&](const fs::path& file, const std::string& colour) {
+    std::ofstream(file, std::ios::trunc)
+        << "#!/bin/sh\ncp \"" << (dir_ / "s").string() << "/" << colour << ".png\" \"$1/a.png\"\n";
+    fs::permissions(file, fs::perms::owner_all);
+  };
+  write_script(dir_ / "s" / "paint.sh", "red");
+  write_script(dir_ / "bin" / "paint", "red");
+  std::ofstream(dir_ / "s" / "r.toml") << R"(
+[[case]]
+name = "script"
+command = ["sh", "{suite_dir}/paint.sh", "{out}"]
+outputs = ["a.png"]
+inputs = []
+
+[[case]]
+name = "program"
+command = ["paint", "{out}"]
+outputs = ["a.png"]
+inputs = []
+
+[[case]]
+name = "variable"
+command = ["sh", "-c", "cp {suite_dir}/$COLOUR.png {out}/a.png"]
+outputs = ["a.png"]
+env = ["COLOUR"]
+
+[[case]]
+name = "undeclared"
+command = ["sh", "{suite_dir}/paint.sh", "{out}"]
+outputs = ["a.png"]
+)";
+  const std::string env = "PATH=" + (dir_ / "bin").string() + ":$PATH COLOUR=red";
+  ASSERT_EQ(aosuite("bless s/r.toml", env).rc, 0);
+  ASSERT_EQ(aosuite("check s/r.toml", env).rc, 0);
+  test::Outcome r = aosuite("check s/r.toml", env);  // nothing changed: reused where it may be
+  EXPECT_EQ(r.rc, 0) << r.out << r.err;
+  const auto reused = [](const std::string& out) {
+    std::size_t n = 0;
+    for (std::size_t at = 0; (at = out.find("(unchanged, reused)", at)) != std::string::npos; ++at)
+      ++n;
+    return n;
+  };
+  EXPECT_EQ(reused(r.out), 3u) << r.out;
+  EXPECT_NE(r.out.find("(run again: the case declares no inputs or env"), std::string::npos)
+      << r.out;
+  const auto results = nlohmann::json::parse(read_text(dir_ / "reports" / "r" / "results.json"));
+  for (const auto& c : results.at("cases")) {
+    EXPECT_EQ(c.at("not_reused").get<std::string>().empty(), c.at("id") != "undeclared") << c;
+  }
+
+  write_script(dir_ / "s" / "paint.sh", "green");  // the script edited
+  write_script(dir_ / "bin" / "paint", "green");   // the program rebuilt
+  r = aosuite("check s/r.toml", "PATH=" + (dir_ / "bin").string() + ":$PATH COLOUR=green");
+  EXPECT_EQ(r.rc, 1) << r.out;
+  EXPECT_EQ(reused(r.out), 0u) << r.out;
+  for (const char* id : {"script", "program", "variable", "undeclared"})
+    EXPECT_NE(r.out.find(std::string("FAIL  ") + id), std::string::npos) << id << "\n" << r.out;
+}
+
 // An ERROR is never reused: its cause may lie outside every hash (here the EXR library beside
 // the binary, missing, then installed), so the next run judges the case again.
 TEST_F(ImageCases, AnErrorIsJudgedAgainOnceItsCauseIsGone) {

@@ -220,6 +220,7 @@
     const c = data[i];
     let h = `<button class=close title="close (Esc)">×</button><h2 id="${esc(c.id)}">${esc(c.id)} <span class="${c.status}">${c.status}</span></h2>`;
     if (c.message) h += `<p>${esc(c.message)}</p>`;
+    if (c.not_reused) h += `<p class=note>${esc(c.not_reused)}</p>`;
     if (c.source) h += `<p>${c.kind === "command" ? "Command" : "Source"} <code>${esc(c.source)}</code>${c.exit >= 0 ? ", exit status " + c.exit : ""}${c.attempts > 1 ? ", " + c.attempts + " attempts" : ""}</p>`;
     if (c.stderr) h += `<details${c.status === "ERROR" ? " open" : ""}><summary>stderr</summary><pre>${esc(c.stderr)}</pre></details>`;
     if (c.bless) h += `<p>Accept after making the images again: <code>${esc(c.bless)}</code><br>Accept this report's image: <code>${esc(meta.approve + " --filter " + shq(exact([c.id])))}</code></p>`;
