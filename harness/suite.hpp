@@ -84,8 +84,8 @@ struct Skipped {
 struct Suite {
   std::string name;
   std::filesystem::path file;
-  // The suite's `goldens` key (relative to the suite file), else goldens/<name> relative to
-  // the current directory, as reports/<name> is; `--goldens` replaces it (goldens_given).
+  // The suite's `goldens` key (relative to the suite file), else goldens/<name> beside the
+  // suite file, from any current directory; `--goldens` replaces it (goldens_given).
   std::filesystem::path goldens;
   bool goldens_given = false;
   std::vector<Case> cases;

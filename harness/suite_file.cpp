@@ -454,7 +454,9 @@ Suite load_suite(const fs::path& file) {
            "suite name '" + printable(suite.name) +
                "' must be letters, digits, - _ . and not start with '.' (it names folders)");
   }
-  suite.goldens = fs::path("goldens") / suite.name;
+  // Beside the suite file, whatever the current directory: a suite checked from elsewhere
+  // finds its goldens, and bless never writes a second tree there.
+  suite.goldens = dir / "goldens" / suite.name;
   if (const toml::node* n = root.get("goldens")) suite.goldens = dir / r.string(*n, "goldens");
   suite.goldens = suite.goldens.lexically_normal();
 

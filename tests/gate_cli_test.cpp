@@ -93,7 +93,8 @@ TEST_F(GateCli, AnImageBeyondAWarningLimitPassesWithAWarnStatus) {
   ASSERT_EQ(aosuite("check s/w.toml").rc, 0);
   r = aosuite("bless s/w.toml --failed --report reports/w");
   ASSERT_EQ(r.rc, 0) << r.out << r.err;
-  EXPECT_EQ(read_file(dir_ / "goldens" / "w" / "x" / "x.png"), read_file(dir_ / "s" / "x.png"));
+  EXPECT_EQ(read_file(dir_ / "s" / "goldens" / "w" / "x" / "x.png"),
+            read_file(dir_ / "s" / "x.png"));
   r = aosuite("check s/w.toml");
   EXPECT_EQ(r.rc, 0);
   EXPECT_EQ(results().at("cases").at(0).at("status"), "PASS");

@@ -46,9 +46,11 @@ scene = "corner"
         "cd " + dir_.path().string() + " && " + env + " " + AOSUITE_BIN + " " + args, dir_.path());
   }
   std::string broken() const { return "AOSUITE_SHADER_DIR=" + (dir_ / "broken").string(); }
-  std::map<fs::path, std::vector<unsigned char>> goldens() const {
+  // The goldens beside a suite in `folder` (goldens/<name>).
+  std::map<fs::path, std::vector<unsigned char>> goldens(
+      const std::string& folder = "suites") const {
     std::map<fs::path, std::vector<unsigned char>> out;
-    for (const auto& e : fs::recursive_directory_iterator(dir_ / "goldens")) {
+    for (const auto& e : fs::recursive_directory_iterator(dir_ / folder / "goldens")) {
       if (e.is_regular_file()) out[e.path()] = read_file(e.path());
     }
     return out;
@@ -61,7 +63,7 @@ TEST_F(HarnessCli, NewThenBlessedThenPassingThenReused) {
   EXPECT_EQ(r.rc, 1) << r.out << r.err;  // no goldens yet: new, not passing
   EXPECT_NE(r.out.find("4 new"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("aosuite bless suites/t.toml --filter '^corner-"), std::string::npos);
-  EXPECT_FALSE(fs::exists(dir_ / "goldens"));  // check never writes goldens
+  EXPECT_FALSE(fs::exists(dir_ / "suites" / "goldens"));  // check never writes goldens
   EXPECT_NE(read_text(dir_ / "junit.xml").find("failures=\"4\""), std::string::npos);
 
   r = aosuite("bless suites/t.toml --filter sao");
@@ -183,7 +185,8 @@ TEST_F(HarnessCli, BadInputIsAClearErrorAndLosesNothing) {
   EXPECT_EQ(r.rc, 2);
   EXPECT_NE(r.err.find("notadir"), std::string::npos) << r.err;
 
-  const fs::path golden = dir_ / "goldens" / "t" / "corner-inside-sao-48x27" / "with_ao.png";
+  const fs::path golden =
+      dir_ / "suites" / "goldens" / "t" / "corner-inside-sao-48x27" / "with_ao.png";
   std::ofstream(golden, std::ios::trunc) << "garbage";
   r = aosuite("check suites/t.toml");
   EXPECT_EQ(r.rc, 2) << r.out;  // an unreadable golden cannot be judged
@@ -227,7 +230,7 @@ TEST_F(HarnessCli, KilledBlessLeavesEveryGoldenWhole) {
       // A temporary caught before its rename is a dot-file, or a file in a case's dot-folder
       // staged beside it (replace_case_goldens), which golden lookup ignores.
       const bool hidden =
-          std::ranges::any_of(path.lexically_relative(dir_ / "goldens"),
+          std::ranges::any_of(path.lexically_relative(dir_ / "suites" / "goldens"),
                               [](const fs::path& part) { return part.string().starts_with("."); });
       EXPECT_TRUE(before.contains(path) || hidden) << "stray file " << path;
     }
@@ -311,7 +314,7 @@ TEST_F(HarnessCli, AnEmptySelectionIsAnErrorAndKeepsTheLastReport) {
 // a file where the case's golden folder should be (not NEW with a bless hint).
 TEST_F(HarnessCli, DamagedGoldensAreErrorsNotPassesOrNew) {
   ASSERT_EQ(aosuite("bless suites/t.toml").rc, 0);
-  const fs::path c = dir_ / "goldens" / "t" / "corner-inside-sao-48x27";
+  const fs::path c = dir_ / "suites" / "goldens" / "t" / "corner-inside-sao-48x27";
   fs::copy_file(c / "with_ao.png", c / "with_ao~ok.png");
   const std::vector<unsigned char> whole = read_file(c / "with_ao.png");
   std::ofstream(c / "with_ao.png", std::ios::binary | std::ios::trunc)
@@ -341,14 +344,25 @@ TEST_F(HarnessCli, PlatformGoldensKeepTheGenericVariants) {
   EXPECT_EQ(r.rc, 0) << r.out << r.err;  // the darker variant still passes
 }
 
-// Goldens of a suite outside the project land in the working directory's goldens/, or where
-// --goldens says (and the printed bless command says so too).
-TEST_F(HarnessCli, GoldensFolderIsTheWorkingDirectorysOrGiven) {
+// Goldens of a suite without a goldens key land beside the suite file (goldens/<name>), from
+// whatever directory it is blessed and checked, or where --goldens says (and the printed bless
+// command says so too).
+TEST_F(HarnessCli, GoldensFolderIsBesideTheSuiteOrGiven) {
   fs::create_directories(dir_ / "elsewhere" / "deep");
+  fs::create_directories(dir_ / "cwd");
   fs::copy_file(dir_ / "suites" / "t.toml", dir_ / "elsewhere" / "deep" / "o.toml");
   EXPECT_EQ(aosuite("bless elsewhere/deep/o.toml --filter inside-sao").rc, 0);
-  EXPECT_TRUE(fs::exists(dir_ / "goldens" / "o" / "corner-inside-sao-48x27" / "with_ao.png"));
-  EXPECT_FALSE(fs::exists(dir_ / "elsewhere" / "goldens"));
+  EXPECT_TRUE(fs::exists(dir_ / "elsewhere" / "deep" / "goldens" / "o" / "corner-inside-sao-48x27" /
+                         "with_ao.png"));
+  EXPECT_FALSE(fs::exists(dir_ / "goldens"));
+  // Checked from another directory, the suite finds them: nothing is NEW.
+  const test::Outcome from_elsewhere =
+      test::run_shell("cd " + (dir_ / "cwd").string() + " && " + AOSUITE_BIN +
+                          " check ../elsewhere/deep/o.toml --filter inside-sao",
+                      dir_.path());
+  EXPECT_EQ(from_elsewhere.rc, 0) << from_elsewhere.out << from_elsewhere.err;
+  EXPECT_EQ(from_elsewhere.out.find("NEW"), std::string::npos) << from_elsewhere.out;
+  EXPECT_FALSE(fs::exists(dir_ / "cwd" / "goldens"));
   const test::Outcome r = aosuite("check elsewhere/deep/o.toml --filter inside --goldens g2");
   EXPECT_EQ(r.rc, 1) << r.out << r.err;
   EXPECT_NE(r.out.find("aosuite bless elsewhere/deep/o.toml --goldens g2 --filter "
@@ -379,7 +393,7 @@ TEST_F(HarnessCli, BlessLogIsWrittenPerCaseWhenRedirected) {
          std::chrono::steady_clock::now() < deadline) {
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
   }
-  const int written = fs::exists(dir_ / "goldens") ? village_goldens() : 0;
+  const int written = fs::exists(dir_ / "suites" / "goldens") ? village_goldens() : 0;
   const pid_t pid = std::stoi(read_text(pid_file));
   kill(pid, SIGKILL);
   while (kill(pid, 0) == 0) std::this_thread::sleep_for(std::chrono::milliseconds(10));
@@ -392,7 +406,7 @@ TEST_F(HarnessCli, PathsStayInsideTheirFolders) {
   test::Outcome r = aosuite("bless suites/t.toml --variant ../../evil");
   EXPECT_EQ(r.rc, 2) << r.out << r.err;
   EXPECT_NE(r.err.find("--variant '../../evil'"), std::string::npos) << r.err;
-  EXPECT_FALSE(fs::exists(dir_ / "goldens"));
+  EXPECT_FALSE(fs::exists(dir_ / "suites" / "goldens"));
   std::ofstream(dir_ / "suites" / "up.toml") << "name = \"..\"\n[[case]]\nscene = \"corner\"\n";
   r = aosuite("check suites/up.toml");
   EXPECT_EQ(r.rc, 2) << r.out << r.err;
@@ -458,7 +472,8 @@ TEST_F(HarnessCli, ReportGoldenCopiesAreNeverTruncated) {
   ASSERT_EQ(aosuite("bless suites/t.toml").rc, 0);
   cv::Mat noise(400, 400, CV_8UC4);
   cv::randu(noise, cv::Scalar::all(0), cv::Scalar::all(256));
-  const fs::path golden = dir_ / "goldens" / "t" / "corner-inside-sao-48x27" / "with_ao.png";
+  const fs::path golden =
+      dir_ / "suites" / "goldens" / "t" / "corner-inside-sao-48x27" / "with_ao.png";
   write_png_rgba8(golden, noise);
   ASSERT_GT(fs::file_size(golden), 200u * 1024);
   const test::Outcome r =
@@ -482,7 +497,7 @@ TEST_F(HarnessCli, BlessReplacesACaseAllOrNothingAndSaysWhy) {
   std::ofstream(dir_ / "suites" / "t.toml", std::ios::app)
       << "images = [\"with_ao\", \"ao_only\"]\n";
   ASSERT_EQ(aosuite("bless suites/t.toml --filter inside-sao").rc, 0);
-  const fs::path c = dir_ / "goldens" / "t" / "corner-inside-sao-48x27";
+  const fs::path c = dir_ / "suites" / "goldens" / "t" / "corner-inside-sao-48x27";
   const std::vector<unsigned char> first = read_file(c / "with_ao.png");
   fs::remove(c / "ao_only.png");
   fs::create_directories(c / "ao_only.png");
@@ -512,7 +527,7 @@ TEST_F(HarnessCli, PrintedBlessCommandsAreQuotedAndExact) {
   fs::copy_file(dir_ / "suites" / "t.toml", dir_ / "my 'suites'" / "t.toml");
   const std::string suite = "\"my 'suites'/t.toml\"";
   ASSERT_EQ(aosuite("bless " + suite).rc, 0);
-  const auto before = goldens();
+  const auto before = goldens("my 'suites'");
   test::Outcome r = aosuite("check " + suite, broken());
   ASSERT_EQ(r.rc, 1) << r.out << r.err;
   const std::string all = "to accept all 2 failing and new cases: aosuite bless ";
@@ -526,7 +541,7 @@ TEST_F(HarnessCli, PrintedBlessCommandsAreQuotedAndExact) {
       dir_.path());
   ASSERT_EQ(r.rc, 0) << r.out << r.err;
   EXPECT_NE(r.out.find("2 of 2 cases blessed"), std::string::npos) << r.out;
-  for (const auto& [path, bytes] : goldens()) {
+  for (const auto& [path, bytes] : goldens("my 'suites'")) {
     const bool sao = path.string().find("-sao-") != std::string::npos;
     EXPECT_EQ(before.at(path) == bytes, !sao) << path;
   }

@@ -54,8 +54,8 @@ TEST_F(HarnessGates, FlipAndAoFloatRmseGateACaseAndTheReportShowsTheHeatMap) {
         R"(["with_ao", "ao_float"])");
   test::Outcome r = aosuite("bless suites/g.toml");
   ASSERT_EQ(r.rc, 0) << r.out << r.err;
-  EXPECT_TRUE(fs::is_regular_file(dir_ / "goldens" / "g" / case_dir / "with_ao.png"));
-  EXPECT_TRUE(fs::is_regular_file(dir_ / "goldens" / "g" / case_dir / "ao_float.exr"));
+  EXPECT_TRUE(fs::is_regular_file(dir_ / "suites" / "goldens" / "g" / case_dir / "with_ao.png"));
+  EXPECT_TRUE(fs::is_regular_file(dir_ / "suites" / "goldens" / "g" / case_dir / "ao_float.exr"));
   r = aosuite("check suites/g.toml");
   ASSERT_EQ(r.rc, 0) << r.out << r.err;
 
@@ -172,7 +172,7 @@ files = ["../actual/ao.exr"]
 rmse = { max = 0.001 }
 )";
   ASSERT_EQ(aosuite("bless suites/e.toml").rc, 0);
-  EXPECT_TRUE(fs::is_regular_file(dir_ / "goldens" / "e" / "float-ao" / "ao.exr"));
+  EXPECT_TRUE(fs::is_regular_file(dir_ / "suites" / "goldens" / "e" / "float-ao" / "ao.exr"));
   EXPECT_EQ(aosuite("check suites/e.toml").rc, 0);
   fs::copy_file(dir_ / "expected" / "ao.exr", dir_ / "actual" / "ao.exr",
                 fs::copy_options::overwrite_existing);
@@ -189,7 +189,7 @@ TEST_F(HarnessGates, RegionMapsBesideTheGoldenPickTolerances) {
       "strict = { color = [255, 0, 0], flip = { max_mean = 0.001 } }\n",
       R"(["with_ao"])", "spheres", "front");
   ASSERT_EQ(aosuite("bless suites/g.toml").rc, 0);
-  const fs::path golden_dir = dir_ / "goldens" / "g" / "spheres-front-sao-64x36";
+  const fs::path golden_dir = dir_ / "suites" / "goldens" / "g" / "spheres-front-sao-64x36";
   const fs::path map = golden_dir / "with_ao.regions.png";
   ASSERT_TRUE(fs::is_regular_file(map));
   cv::Mat painted = read_png_rgba8(map);

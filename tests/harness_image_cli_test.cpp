@@ -78,7 +78,7 @@ timeout = 20
         dir_.path());
   }
   std::vector<unsigned char> golden() const {
-    return read_file(dir_ / "goldens" / "t" / "chart" / "chart.png");
+    return read_file(dir_ / "s" / "goldens" / "t" / "chart" / "chart.png");
   }
   test::TempDir dir_;
 };
@@ -136,7 +136,7 @@ TEST_F(ImageCases, MessagesNameTheFilesTheyAreAbout) {
   EXPECT_NE(r.err.find("nope.toml: no such suite file"), std::string::npos) << r.err;
   r = aosuite("check s/t.toml");
   EXPECT_EQ(r.rc, 1);
-  EXPECT_NE(r.out.find("no golden yet at goldens/t/chart/chart.png"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("no golden yet at s/goldens/t/chart/chart.png"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("1 case: 0 passed, 0 failed, 1 new"), std::string::npos) << r.out;
   EXPECT_EQ(r.out.find("-%"), std::string::npos) << r.out;  // nothing measured, nothing shown
   ASSERT_EQ(aosuite("bless s/t.toml").rc, 0);
@@ -196,7 +196,7 @@ TEST_F(ImageCases, ACommandsImagesPassFailAndAreApprovedFromTheReport) {
   test::Outcome r = aosuite("check s/t.toml --junit junit.xml");
   EXPECT_EQ(r.rc, 1) << r.out << r.err;
   EXPECT_NE(r.out.find("NEW   chart"), std::string::npos) << r.out;
-  EXPECT_FALSE(fs::exists(dir_ / "goldens"));
+  EXPECT_FALSE(fs::exists(dir_ / "s" / "goldens"));
   EXPECT_NE(r.out.find("or review reports/t/index.html and accept the images it shows: aosuite "
                        "bless s/t.toml --failed --report reports/t"),
             std::string::npos)
@@ -256,7 +256,7 @@ TEST_F(ImageCases, ACommandsImagesPassFailAndAreApprovedFromTheReport) {
   EXPECT_EQ(aosuite("check s/t.toml", "AOSUITE_PLATFORM=ci-box").rc, 1);
   r = aosuite("bless s/t.toml --failed --platform", "AOSUITE_PLATFORM=ci-box");
   EXPECT_EQ(r.rc, 0) << r.out << r.err;
-  EXPECT_TRUE(fs::exists(dir_ / "goldens" / "t" / "chart" / "ci-box" / "chart.png"));
+  EXPECT_TRUE(fs::exists(dir_ / "s" / "goldens" / "t" / "chart" / "ci-box" / "chart.png"));
   EXPECT_EQ(aosuite("check s/t.toml", "AOSUITE_PLATFORM=ci-box").rc, 0);
   EXPECT_EQ(aosuite("check s/t.toml").rc, 1);  // elsewhere the generic (green) golden holds
   r = aosuite("bless s/t.toml --failed --platform");
@@ -280,14 +280,14 @@ TEST_F(ImageCases, CommandFailuresAreErrorsWithExitStatusAndStderr) {
   EXPECT_NE(read_text(dir_ / "reports" / "t" / "index.html").find("cannot draw today"),
             std::string::npos);
   EXPECT_EQ(aosuite("bless s/t.toml").rc, 2);
-  EXPECT_FALSE(fs::exists(dir_ / "goldens" / "t" / "chart" / "chart.png"));
+  EXPECT_FALSE(fs::exists(dir_ / "s" / "goldens" / "t" / "chart" / "chart.png"));
   // The report's ERROR is not something to approve; a missing report or another suite's is a
   // one-line error naming the file.
   r = aosuite("bless s/t.toml --from-report --filter chart");
   EXPECT_EQ(r.rc, 2) << r.out << r.err;
   EXPECT_NE(r.out.find("NOT BLESSED chart: could not be judged in the report"), std::string::npos)
       << r.out;
-  EXPECT_FALSE(fs::exists(dir_ / "goldens" / "t" / "chart" / "chart.png"));
+  EXPECT_FALSE(fs::exists(dir_ / "s" / "goldens" / "t" / "chart" / "chart.png"));
   for (const char* bad : {"bless s/t.toml --failed --report nowhere",
                           "bless --actual s --expected s --failed --report reports/t"}) {
     r = aosuite(bad);
@@ -597,7 +597,7 @@ TEST_F(ImageCases, BlessFromAReportChecksTheSuiteItNames) {
   test::Outcome r = aosuite("bless --failed --report reports/t");
   EXPECT_EQ(r.rc, 2) << r.out << r.err;
   EXPECT_NE(r.err.find("whose suite is 'other', not 't'"), std::string::npos) << r.err;
-  EXPECT_FALSE(fs::exists(dir_ / "goldens" / "other"));
+  EXPECT_FALSE(fs::exists(dir_ / "s" / "goldens" / "other"));
   std::ofstream(results, std::ios::trunc) << honest;
   r = aosuite("bless --failed --report reports/t");
   EXPECT_EQ(r.rc, 0) << r.out << r.err;
@@ -784,7 +784,7 @@ max_mean_delta = 255
 )";
   EXPECT_EQ(aosuite("check s/f.toml").rc, 1);
   EXPECT_EQ(aosuite("bless s/f.toml").rc, 0);
-  EXPECT_TRUE(fs::exists(dir_ / "goldens" / "f" / "disk" / "a.png"));
+  EXPECT_TRUE(fs::exists(dir_ / "s" / "goldens" / "f" / "disk" / "a.png"));
   EXPECT_EQ(aosuite("check s/f.toml").rc, 0);
   cv::Mat m = read_png_rgba8(dir_ / "s" / "out" / "a.png");
   m.at<cv::Vec4b>(0, 0) = {0, 0, 255, 255};  // 1 of 48 pixels: within 10 %
@@ -830,7 +830,7 @@ TEST_F(ImageCases, ImagesReplacedSinceTheCacheWasWrittenAreNotReused) {
   // Approving from the report takes only the image the report judged: one replaced since (by
   // hand, a later or a killed run) or a link is refused, and the golden stays.
   const fs::path reported = dir_ / "reports" / "f" / "cases" / "disk" / "a.png";
-  const auto golden = read_file(dir_ / "goldens" / "f" / "disk" / "a.png");
+  const auto golden = read_file(dir_ / "s" / "goldens" / "f" / "disk" / "a.png");
   fs::copy_file(dir_ / "s" / "green.png", reported, fs::copy_options::overwrite_existing);
   r = aosuite("bless s/f.toml --failed --report reports/f");
   EXPECT_EQ(r.rc, 2) << r.out << r.err;
@@ -841,7 +841,7 @@ TEST_F(ImageCases, ImagesReplacedSinceTheCacheWasWrittenAreNotReused) {
   r = aosuite("bless s/f.toml --failed --report reports/f");
   EXPECT_EQ(r.rc, 2) << r.out << r.err;
   EXPECT_NE((r.out + r.err).find("not a regular file"), std::string::npos) << r.out << r.err;
-  EXPECT_EQ(read_file(dir_ / "goldens" / "f" / "disk" / "a.png"), golden);
+  EXPECT_EQ(read_file(dir_ / "s" / "goldens" / "f" / "disk" / "a.png"), golden);
 }
 
 // A case's goldens change all or nothing. Two sets of two images, a small one and a large one;
@@ -870,7 +870,7 @@ TEST_F(ImageCases, ACasesGoldensAreReplacedAllOrNothing) {
                     fs::copy_options::overwrite_existing);
     }
   };
-  const fs::path goldens = dir_ / "goldens" / "two" / "two";
+  const fs::path goldens = dir_ / "s" / "goldens" / "two" / "two";
   // Which set the goldens are: -1 for a mix (or anything else).
   const auto which = [&] {
     for (int k = 0; k < 2; ++k) {
@@ -1194,11 +1194,11 @@ files = ["shots/big.png"]
       << keys.out;
 
   // The copied command approves a and b from the report's images; d stays failing.
-  const auto c_before = read_file(dir_ / "goldens" / "r" / "c" / "c.png");
+  const auto c_before = read_file(dir_ / "s" / "goldens" / "r" / "c" / "c.png");
   r = aosuite(command.substr(std::string("aosuite ").size()));
   EXPECT_EQ(r.rc, 0) << r.out << r.err;
   EXPECT_NE(r.out.find("2 of 2 cases blessed"), std::string::npos) << r.out;
-  EXPECT_EQ(read_file(dir_ / "goldens" / "r" / "c" / "c.png"), c_before);
+  EXPECT_EQ(read_file(dir_ / "s" / "goldens" / "r" / "c" / "c.png"), c_before);
   r = aosuite("check s/r.toml");
   EXPECT_EQ(r.rc, 1) << r.out;
   EXPECT_NE(r.out.find("4 passed, 1 failed"), std::string::npos) << r.out;

@@ -81,7 +81,7 @@ files = ["photo.png"]
     ADD_FAILURE() << "no chart in " << report;
     return 0;
   }
-  fs::path suggested() const { return dir_ / "goldens" / "t" / "tolerances.suggested.toml"; }
+  fs::path suggested() const { return dir_ / "s" / "goldens" / "t" / "tolerances.suggested.toml"; }
   test::TempDir dir_;
 };
 
