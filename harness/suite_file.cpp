@@ -108,6 +108,18 @@ std::pair<long long, long long> read_range(const Reader& r, const toml::node& n,
   return {lo, top};
 }
 
+// The registered metric a key names; else fails at the value, saying which keys the table
+// takes (`keys`, then the metrics).
+const metric::Metric& metric_key(const Reader& r, const toml::node& value, std::string_view key,
+                                 std::string_view keys) {
+  try {
+    return metric::find(key);
+  } catch (const std::invalid_argument&) {
+    r.fail(value.source(), fmt::format("unknown key '{}' ({}the metrics {})", printable(key), keys,
+                                       metric::names()));
+  }
+}
+
 // [tolerance.warn]: max_mismatch_percent, max_channel_delta, differing_pixels (a maximum) and
 // metric gates, as in the tolerance; each one it names warns.
 WarnLimits read_warn(const Reader& r, const toml::node& n) {
@@ -122,16 +134,10 @@ WarnLimits read_warn(const Reader& r, const toml::node& n) {
     } else if (key.str() == "differing_pixels") {
       w.max_differing_pixels = r.integer(value, "differing_pixels", 0, 1 << 30);
     } else {
-      const metric::Metric* m = nullptr;
-      try {
-        m = &metric::find(key.str());
-      } catch (const std::invalid_argument&) {
-        r.fail(value.source(),
-               fmt::format("unknown key '{}' (warn keys: max_mismatch_percent, max_channel_delta, "
-                           "differing_pixels, and the metrics {})",
-                           printable(key.str()), metric::names()));
-      }
-      w.gates.push_back(read_gates(r, *m, value));
+      const metric::Metric& m = metric_key(r, value, key.str(),
+                                           "warn keys: max_mismatch_percent, max_channel_delta, "
+                                           "differing_pixels, and ");
+      w.gates.push_back(read_gates(r, m, value));
     }
   }
   if (w.empty()) r.fail(n.source(), "[tolerance.warn] sets no limit");
@@ -147,6 +153,10 @@ std::string limit_text(const toml::node& n) {
   return "(not a value)";
 }
 
+const std::string kToleranceKeys = std::string("tolerance keys: ") + comparison::kLimitKeys +
+                                   ", channel_delta, differing_pixels, ignore, mask, "
+                                   "foreground_only, regions, warn, float, and ";
+
 // [tolerance]: the one tolerance (compare/tolerance.hpp). Each key sets the limit it names
 // and leaves every other at its default: metric gates sit beside Resemble's gate, and a
 // mismatch percentage keeps the channel limit.
@@ -158,27 +168,16 @@ void read_tolerance(const Reader& r, const fs::path& dir, const toml::node& n, T
   for (const auto& [key, value] : tbl) {
     if (std::ranges::find(kOwnKeys, key.str()) != std::end(kOwnKeys)) continue;
     if (value.is_table() || value.is_array()) {
-      const metric::Metric* m = nullptr;
-      try {
-        m = &metric::find(key.str());
-      } catch (const std::invalid_argument&) {
-        r.fail(value.source(),
-               fmt::format("unknown key '{}' (tolerance keys: {}, channel_delta, "
-                           "differing_pixels, ignore, mask, foreground_only, regions, warn, "
-                           "float, and the metrics {})",
-                           printable(key.str()), comparison::kLimitKeys, metric::names()));
-      }
-      std::erase_if(t.gates, [&](const metric::Gates& g) { return g.metric == m; });
-      t.gates.push_back(read_gates(r, *m, value));
+      const metric::Metric& m = metric_key(r, value, key.str(), kToleranceKeys);
+      std::erase_if(t.gates, [&](const metric::Gates& g) { return g.metric == &m; });
+      t.gates.push_back(read_gates(r, m, value));
       continue;
     }
     try {
       comparison::set_limit(t, key.str(), limit_text(value));
     } catch (const std::invalid_argument& e) {
-      r.fail(value.source(), fmt::format("{} (tolerance keys: {}, channel_delta, "
-                                         "differing_pixels, ignore, mask, foreground_only, "
-                                         "regions, warn, float, and the metrics {})",
-                                         e.what(), comparison::kLimitKeys, metric::names()));
+      r.fail(value.source(),
+             fmt::format("{} ({}the metrics {})", e.what(), kToleranceKeys, metric::names()));
     }
   }
   if (const toml::node* m = tbl.get("foreground_only"))
@@ -188,15 +187,9 @@ void read_tolerance(const Reader& r, const fs::path& dir, const toml::node& n, T
   if (const toml::node* f = tbl.get("float")) {
     // [tolerance.float]: metric gates for float images only.
     for (const auto& [key, value] : r.table(*f, "float")) {
-      const metric::Metric* m = nullptr;
-      try {
-        m = &metric::find(key.str());
-      } catch (const std::invalid_argument&) {
-        r.fail(value.source(), fmt::format("unknown metric '{}' in [tolerance.float] ({})",
-                                           printable(key.str()), metric::names()));
-      }
-      std::erase_if(t.float_gates, [&](const metric::Gates& g) { return g.metric == m; });
-      t.float_gates.push_back(read_gates(r, *m, value));
+      const metric::Metric& m = metric_key(r, value, key.str(), "[tolerance.float] takes ");
+      std::erase_if(t.float_gates, [&](const metric::Gates& g) { return g.metric == &m; });
+      t.float_gates.push_back(read_gates(r, m, value));
     }
   }
   if (const toml::node* m = tbl.get("channel_delta")) {
