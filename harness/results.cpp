@@ -51,6 +51,9 @@ json to_json(const ImageVerdict& v) {
           {"mismatch_text", v.mismatch_text},
           {"max_channel_delta", v.max_channel_delta},
           {"differing_pixels", v.differing_pixels},
+          {"mean_shift", v.mean_shift},
+          {"mean_delta", v.mean_delta},
+          {"kinds", {v.expected_kind, v.actual_kind}},
           {"largest", {{"value", v.largest.value}, {"x", v.largest.x}, {"y", v.largest.y}}},
           {"stale", v.stale},
           {"golden", printable(v.golden.string())},
@@ -68,6 +71,7 @@ ImageVerdict verdict_from_json(const json& j) {
   v.mismatch_text = j.at("mismatch_text");
   v.max_channel_delta = int_at(j, "max_channel_delta");
   v.differing_pixels = j.value("differing_pixels", 0LL);
+  v.mean_shift = j.value("mean_shift", 0.0), v.mean_delta = j.value("mean_delta", 0.0);
   if (const auto l = j.find("largest"); l != j.end()) {  // absent in older results
     v.largest = {l->at("value").get<double>(), int_at(*l, "x"), int_at(*l, "y")};
   }

@@ -34,6 +34,10 @@ std::string case_toml(const Suggestion& s) {
       out += line("max_channel_delta", fmt::format("{}", next.max_channel_delta),
                   fmt::format("{}", now.max_channel_delta));
     }
+    out += line("max_mean_shift", fmt::format("{}", next.max_mean_shift),
+                fmt::format("{}", now.max_mean_shift));
+    out += line("max_mean_delta", fmt::format("{}", next.max_mean_delta),
+                fmt::format("{}", now.max_mean_delta));
     if (now.max_differing_pixels >= 0) {
       out += line("differing_pixels", range(next.min_differing_pixels, next.max_differing_pixels),
                   range(now.min_differing_pixels, now.max_differing_pixels));

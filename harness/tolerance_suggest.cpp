@@ -105,6 +105,7 @@ struct Observed {
   bool resemble = false;  // some image had Resemble's numbers
   double mismatch = 0;
   int delta = 0, least_delta = 255;  // the two-sided budgets' ends
+  double mean_shift = 0, mean_delta = 0;
   long long pixels = 0, least_pixels = -1;
   std::vector<std::optional<double>> limits;  // per limit, in for_each_limit's order
 };
@@ -173,6 +174,8 @@ std::string observe(const Suite& suite, const Case& c, const Run& run, const Cas
       seen.resemble = true;
       seen.mismatch = std::max(seen.mismatch, v->mismatch_percent);
       seen.delta = std::max(seen.delta, v->max_channel_delta);
+      seen.mean_shift = std::max(seen.mean_shift, v->mean_shift);
+      seen.mean_delta = std::max(seen.mean_delta, v->mean_delta);
       seen.least_delta = std::min(seen.least_delta, v->max_channel_delta);
       seen.pixels = std::max(seen.pixels, v->differing_pixels);
       seen.least_pixels = seen.least_pixels < 0 ? v->differing_pixels
@@ -192,6 +195,9 @@ void propose(const Observed& seen, const SuggestOptions& o, Suggestion& s) {
   s.proposed.resemble = s.current.resemble && seen.resemble;
   s.proposed.max_mismatch_percent = std::min(100.0, round_outward(seen.mismatch * up, true));
   s.proposed.max_channel_delta = std::min(255, int(std::ceil(seen.delta * up)));
+  // The means as the other limits: the largest any run measured, with the margin.
+  s.proposed.max_mean_shift = round_outward(seen.mean_shift * up, true);
+  s.proposed.max_mean_delta = round_outward(seen.mean_delta * up, true);
   // A two-sided budget keeps its sides: the least seen (less the margin) at its lower end.
   if (s.current.min_channel_delta > 0)
     s.proposed.min_channel_delta = int(std::floor(seen.least_delta / up));
@@ -305,6 +311,8 @@ std::optional<Tolerance> loosest(const std::vector<Suggestion>& suggestions) {
     out->max_mismatch_percent =
         std::max(out->max_mismatch_percent, s.proposed.max_mismatch_percent);
     out->max_channel_delta = std::max(out->max_channel_delta, s.proposed.max_channel_delta);
+    out->max_mean_shift = std::max(out->max_mean_shift, s.proposed.max_mean_shift);
+    out->max_mean_delta = std::max(out->max_mean_delta, s.proposed.max_mean_delta);
     std::map<std::string, double> limits;
     for_each_limit(s.proposed,
                    [&](std::string_view region, const metric::Gates& g, const metric::Limit& l) {
@@ -322,8 +330,10 @@ std::optional<Tolerance> loosest(const std::vector<Suggestion>& suggestions) {
 std::string folder_flags(const Tolerance& t) {
   std::string out;
   if (t.resemble) {
-    out = fmt::format("--max-mismatch {} --max-channel-delta {}", t.max_mismatch_percent,
-                      t.max_channel_delta);
+    out = fmt::format(
+        "--max-mismatch {} --max-channel-delta {} --limit max_mean_shift={} "
+        "--limit max_mean_delta={}",
+        t.max_mismatch_percent, t.max_channel_delta, t.max_mean_shift, t.max_mean_delta);
   }
   for (const metric::Gates& g : t.gates) {
     for (const metric::Limit& l : g.limits) {

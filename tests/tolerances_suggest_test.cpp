@@ -225,8 +225,10 @@ TEST_F(TolerancesSuggest, FolderModeRunsGetTheFlagsOfOneTolerance) {
   const test::Outcome r = aosuite("tolerances suggest --report reports/a --report reports/b");
   ASSERT_EQ(r.rc, 0) << r.out << r.err;
   // Resemble's default mode lets steps this small through (0 %); the largest step is run b's 7,
-  // and FLIP's mean the larger of the two images'.
-  const std::string flags = "--max-mismatch 0 --max-channel-delta 7 --gate flip.max_mean=0.0073";
+  // the means the larger of the two runs', and FLIP's mean the larger of the two images'.
+  const std::string flags =
+      "--max-mismatch 0 --max-channel-delta 7 --limit max_mean_shift=0.2084 "
+      "--limit max_mean_delta=0.05209 --gate flip.max_mean=0.0073";
   const std::size_t at = r.out.find(flags);
   ASSERT_NE(at, std::string::npos) << r.out;
   const std::string line = r.out.substr(r.out.rfind("aosuite check ", at));
