@@ -324,8 +324,9 @@ LargestDifference float_difference(const FloatImage& a, const FloatImage& b,
 // from the two PNG files, a band at a time, where nothing needs the whole images (no diff,
 // nothing ignored or uncounted, no shift radius, Resemble's thresholds alone decide).
 // `aosuite compare --diff` keeps the diff image of this comparison, whatever the verdict.
-void resemble_figures(Side& expected, Side& actual, const Tolerance& t, const Options& o,
-                      Comparison& c) {
+// Returns the ignored pixels it read (a mask is read once per comparison; add_diff reuses them).
+std::vector<std::uint8_t> resemble_figures(Side& expected, Side& actual, const Tolerance& t,
+                                           const Options& o, Comparison& c) {
   const bool keep_diff = o.want_diff && o.resemble_options;
   const resemble::Options ro = resemble_options(t, o, keep_diff);
   const bool whole =
@@ -337,11 +338,11 @@ void resemble_figures(Side& expected, Side& actual, const Tolerance& t, const Op
       c.mismatch_percent = r->raw_mismatch_percentage, c.mismatch_text = r->mismatch_percentage;
       take_stats(stats, int(peek_png_header(expected.bytes(), expected.name()).width), c);
       c.resemble = std::move(*r);
-      return;
+      return {};  // no ignore box or mask: nothing is ignored
     }
   }
   const RgbaImage& e = expected.rgba8();
-  const std::vector<std::uint8_t> ignored = ignored_pixels(t, e.width(), e.height());
+  std::vector<std::uint8_t> ignored = ignored_pixels(t, e.width(), e.height());
   const RgbaImage judged = judged_pixels(e, actual.rgba8(), t, ignored, o.counted);
   resemble::Result r = resemble::compare(e, judged, ro);
   c.mismatch_percent = r.raw_mismatch_percentage, c.mismatch_text = r.mismatch_percentage;
@@ -358,6 +359,7 @@ void resemble_figures(Side& expected, Side& actual, const Tolerance& t, const Op
   take_stats(stats, e.width(), c);
   if (keep_diff) c.diff = std::move(r.diff), c.ignored = ignored;
   c.resemble = std::move(r);
+  return ignored;
 }
 
 void decide(const Tolerance& t, bool resemble_gate, Comparison& c) {
@@ -379,10 +381,11 @@ void different_shape(Comparison& c, std::string why) {
 }
 
 // Resemble's diff image and the ignored pixels, for a comparison that is not the same.
-void add_diff(Side& expected, Side& actual, const Tolerance& t, const Options& o, Comparison& c) {
+void add_diff(Side& expected, Side& actual, const Tolerance& t, const Options& o,
+              std::vector<std::uint8_t> ignored, Comparison& c) {
   if (!o.want_diff || !c.diff.empty() || c.verdict == Verdict::kSame || !c.comparable) return;
   const RgbaImage& e = expected.rgba8();
-  std::vector<std::uint8_t> ignored = ignored_pixels(t, e.width(), e.height());
+  if (ignored.empty()) ignored = ignored_pixels(t, e.width(), e.height());  // no Resemble gate ran
   c.diff = resemble::compare(e, judged_pixels(e, actual.rgba8(), t, ignored, o.counted),
                              resemble_options(t, o, true))
                .diff;
@@ -470,11 +473,12 @@ Comparison run(const Input& actual_in, const Input& expected_in, const Tolerance
     if (c.resemble) c.diff = std::move(c.resemble->diff);
     return c;
   }
-  if (t.resemble) resemble_figures(expected, actual, t, o, c);
+  std::vector<std::uint8_t> ignored;
+  if (t.resemble) ignored = resemble_figures(expected, actual, t, o, c);
   measure_gates(expected.full(), actual.full(), t, o, false, c);
   c.comparable = true;
   decide(t, t.resemble, c);
-  add_diff(expected, actual, t, o, c);
+  add_diff(expected, actual, t, o, std::move(ignored), c);
   return c;
 }
 
