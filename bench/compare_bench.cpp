@@ -123,7 +123,9 @@ void BM_DecodePng(benchmark::State& state) {
 // pays the kernel's zeroing of 2 x 33 MB of fresh pages at 4K every iteration, as a process
 // does once.
 void BM_ComparePngFiles(benchmark::State& state, bool bands) {
-  const auto& [pa, pb] = png_pair_for(static_cast<int>(state.range(0)));
+  const auto& pngs = png_pair_for(static_cast<int>(state.range(0)));
+  const auto& pa = pngs[0];  // named references: clang 14 cannot capture a binding
+  const auto& pb = pngs[1];
   aosuite::resemble::Options o;
   o.modes = {Mode::kLess};
   for (auto _ : state) {

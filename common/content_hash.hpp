@@ -33,10 +33,11 @@ class ContentHash {
     XXH3_64bits_update(state_.get(), &v, sizeof v);
     return *this;
   }
-  // The file's name and bytes; throws FileError if it cannot be read.
+  // The file's name and bytes; throws FileError if it cannot be read, is not a regular file
+  // or is over kMaxFileBytes (common/file_io.hpp).
   ContentHash& add_file(const std::filesystem::path& p) {
     add(p.filename().string());
-    const std::vector<unsigned char> bytes = read_file(p);
+    const std::vector<unsigned char> bytes = read_regular_file(p);
     return add(std::span<const unsigned char>(bytes));
   }
 

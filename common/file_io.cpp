@@ -126,6 +126,36 @@ std::vector<unsigned char> read_file(const std::filesystem::path& path, std::uin
   return read_all(path, f.fd, st, max_bytes);
 }
 
+std::vector<unsigned char> read_regular_file(const std::filesystem::path& path,
+                                             std::uint64_t max_bytes) {
+  // O_NONBLOCK: a FIFO must not hold the run until a writer comes; it is refused below.
+  const Fd f{::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC)};
+  if (f.fd < 0) fail_errno(path, "cannot open");
+  struct stat st {};
+  if (::fstat(f.fd, &st) != 0) fail_errno(path, "cannot stat");
+  if (!S_ISREG(st.st_mode)) {
+    const char* kind = S_ISDIR(st.st_mode)                          ? "a folder"
+                       : S_ISFIFO(st.st_mode)                       ? "a FIFO"
+                       : S_ISCHR(st.st_mode) || S_ISBLK(st.st_mode) ? "a device"
+                                                                    : "a socket";
+    throw FileError(fmt::format("{}: is {}, not a regular file", path.string(), kind));
+  }
+  return read_all(path, f.fd, st, max_bytes);
+}
+
+void check_no_link_out(const std::filesystem::path& path, const std::filesystem::path& root,
+                       std::string_view opt_in) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::path real = fs::weakly_canonical(path, ec);
+  if (ec || real == fs::absolute(path, ec).lexically_normal()) return;  // no link on the way
+  const fs::path inside = fs::weakly_canonical(root, ec);
+  const auto [end, at] = std::mismatch(inside.begin(), inside.end(), real.begin(), real.end());
+  if (!ec && end == inside.end()) return;  // a link within the folder
+  throw FileError(fmt::format("{}: is a link out of {} (to {}); {}", path.string(), root.string(),
+                              real.string(), opt_in));
+}
+
 MappedFile::MappedFile(const std::filesystem::path& path, std::uint64_t max_bytes) {
   struct stat st {};
   const Fd f = open_for_reading(path, st);

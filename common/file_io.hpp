@@ -31,6 +31,19 @@ inline constexpr std::uint64_t kMaxFileBytes = std::uint64_t{1024} << 20;
 std::vector<unsigned char> read_file(const std::filesystem::path& path,
                                      std::uint64_t max_bytes = UINT64_MAX);
 
+// A regular file's bytes, as the harness reads every file of a suite (inputs, files, goldens
+// and their variants): a device, FIFO, socket or folder, a link to one included, is refused at
+// once, naming the file, and so is a file over max_bytes, before anything is read.
+std::vector<unsigned char> read_regular_file(const std::filesystem::path& path,
+                                             std::uint64_t max_bytes = kMaxFileBytes);
+
+// Throws FileError naming `path` when a link on the way to it leads out of the folder `root`
+// (the suite's folder for its files, the goldens folder for goldens, {out} for a command's
+// outputs): a link must not make aosuite read, judge or bless a file it was never pointed at.
+// A path with no link on it may lie anywhere. `opt_in` names how to allow it, for the message.
+void check_no_link_out(const std::filesystem::path& path, const std::filesystem::path& root,
+                       std::string_view opt_in);
+
 // A file's bytes mapped read-only: no copy and no zeroed buffer, which for image-sized files
 // is measurable in a command that runs for a few tens of milliseconds.
 // Pipes, FIFOs and devices are read to end-of-file instead (read_file), up to max_bytes.

@@ -7,11 +7,16 @@
 #include <sys/sysmacros.h>
 #include <unistd.h>
 
+#include <cctype>
 #include <cerrno>
+#include <cstdint>
+#include <cstdlib>
 #include <cstring>
 #include <ctime>
 #include <fstream>
 #include <iterator>
+#include <mutex>
+#include <set>
 #include <sstream>
 #include <string>
 
@@ -55,6 +60,39 @@ std::string holder(const struct stat& st) {
   return "";
 }
 
+// The user's folder for lock files, made private (0700) and checked to be the user's own
+// folder, not a link or someone else's, since /tmp is shared.
+fs::path lock_folder() {
+  const char* runtime = std::getenv("XDG_RUNTIME_DIR");
+  const fs::path dir = runtime && *runtime
+                           ? fs::path(runtime) / "aosuite-locks"
+                           : fs::path(fmt::format("/tmp/aosuite-locks-{}", ::getuid()));
+  if (::mkdir(dir.c_str(), 0700) != 0 && errno != EEXIST)
+    throw FileError(
+        fmt::format("{}: cannot make the lock folder: {}", dir.string(), std::strerror(errno)));
+  struct stat st {};
+  if (::lstat(dir.c_str(), &st) != 0 || !S_ISDIR(st.st_mode) || st.st_uid != ::getuid())
+    throw FileError(
+        fmt::format("{}: not a folder of this user's, cannot lock there", dir.string()));
+  return dir;
+}
+
+// "<FNV-1a 64 of the canonical path>-<its last name>.lock": one file per real path, whatever
+// names lead to it (a link, "a/../R"), stable across runs and versions of aosuite.
+std::string lock_name(const fs::path& canonical) {
+  std::uint64_t h = 14695981039346656037ull;
+  for (const char c : canonical.native())
+    h = (h ^ static_cast<unsigned char>(c)) * 1099511628211ull;
+  std::string tail = canonical.filename().string().substr(0, 64);
+  for (char& c : tail) c = std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+  return fmt::format("{:016x}-{}.lock", h, tail);
+}
+
+// The folders this process holds: a second lock on one of them is the same run naming one
+// folder for two jobs (`bless --report X --goldens X`), not another aosuite.
+std::mutex held_mutex;
+std::set<std::string> held;
+
 }  // namespace
 
 FolderLock::FolderLock(const fs::path& folder, bool wait) {
@@ -67,26 +105,52 @@ FolderLock::FolderLock(const fs::path& folder, bool wait) {
   }
   if (!top.empty() && fs::create_directories(folder, ec))
     made_ = fs::absolute(folder), made_top_ = top;
-  fd_ = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  const fs::path real = fs::canonical(folder, ec);
+  if (ec || !fs::is_directory(real, ec)) {
+    throw FileError(
+        fmt::format("{}: cannot lock: {}", folder.string(), ec ? ec.message() : "not a folder"));
+  }
+  {
+    const std::lock_guard<std::mutex> g(held_mutex);
+    if (!held.insert(real.string()).second) {
+      throw FileError(
+          fmt::format("{}: named twice in one run; the report, goldens and expected "
+                      "folders must be different folders",
+                      folder.string()));
+    }
+  }
+  real_ = real.string();
+  const auto fail = [&](auto error) {
+    if (fd_ >= 0) ::close(fd_);
+    const std::lock_guard<std::mutex> g(held_mutex);
+    held.erase(real_);
+    throw error;
+  };
+  const fs::path file = lock_folder() / lock_name(real);
+  fd_ = ::open(file.c_str(), O_RDWR | O_CREAT | O_NOFOLLOW | O_CLOEXEC, 0600);
   if (fd_ < 0) {
-    throw FileError(fmt::format("{}: cannot lock: {}", folder.string(), std::strerror(errno)));
+    fail(FileError(fmt::format("{}: cannot lock ({}): {}", folder.string(), file.string(),
+                               std::strerror(errno))));
   }
   while (::flock(fd_, LOCK_EX | (wait ? 0 : LOCK_NB)) != 0) {
     if (errno == EINTR) continue;
     const int saved = errno;
     struct stat st {};
     const std::string who = ::fstat(fd_, &st) == 0 ? holder(st) : "";
-    ::close(fd_);
     if (saved != EWOULDBLOCK) {
-      throw FileError(fmt::format("{}: cannot lock: {}", folder.string(), std::strerror(saved)));
+      fail(FileError(fmt::format("{}: cannot lock: {}", folder.string(), std::strerror(saved))));
     }
-    throw FolderBusy(printable(fmt::format("{}: in use by another aosuite{}; --wait waits for it",
-                                           folder.string(), who.empty() ? "" : " (" + who + ")")));
+    fail(FolderBusy(printable(fmt::format("{}: in use by another aosuite{}; --wait waits for it",
+                                          folder.string(), who.empty() ? "" : " (" + who + ")"))));
   }
 }
 
 FolderLock::~FolderLock() {
   ::close(fd_);  // releases the lock
+  {
+    const std::lock_guard<std::mutex> g(held_mutex);
+    held.erase(real_);
+  }
   std::error_code ec;
   for (fs::path p = made_; !p.empty() && fs::is_empty(p, ec) && fs::remove(p, ec);
        p = p.parent_path()) {

@@ -40,9 +40,15 @@ fi
 
 start=$SECONDS
 mkdir -p "$build"
-cmake -S "$src" -B "$build" -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DAOSUITE_FUZZ=ON -DAOSUITE_BUILD_TESTS=OFF -DAOSUITE_BUILD_BENCH=OFF \
-  >"$build/fuzz-configure.log" 2>&1 || { tail -n 30 "$build/fuzz-configure.log" >&2; exit 1; }
+# A folder already configured keeps its settings: fuzz_smoke runs in the instrumented build
+# (tests/instrumented_build.sh), which also holds the sanitized tests.
+if [ ! -f "$build/CMakeCache.txt" ]; then
+  cmake -S "$src" -B "$build" -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DAOSUITE_FUZZ=ON -DAOSUITE_BUILD_TESTS=OFF -DAOSUITE_BUILD_BENCH=OFF \
+    >"$build/fuzz-configure.log" 2>&1 || { tail -n 30 "$build/fuzz-configure.log" >&2; exit 1; }
+fi
+grep -q '^AOSUITE_FUZZ:BOOL=ON' "$build/CMakeCache.txt" ||
+  { echo "fuzz: $build is not configured with -DAOSUITE_FUZZ=ON" >&2; exit 2; }
 cmake --build "$build" -j "$(nproc)" --target "${targets[@]}" >"$build/fuzz-build.log" 2>&1 ||
   { tail -n 60 "$build/fuzz-build.log" >&2; exit 1; }
 echo "fuzz: built ${#targets[@]} targets in $((SECONDS - start)) s"

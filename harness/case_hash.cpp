@@ -76,7 +76,7 @@ std::string image_input_hash(const Case& c) {
 }
 
 std::string judge_hash(const Case& c, const std::string& input,
-                       const std::vector<std::vector<fs::path>>& goldens) {
+                       const std::vector<std::vector<ReadGolden>>& goldens) {
   Hasher h;
   h.add(input);
   const Tolerance& t = c.tolerance;
@@ -111,8 +111,10 @@ std::string judge_hash(const Case& c, const std::string& input,
   if (!t.mask.empty()) h.add_file(t.mask);
   for (std::size_t i = 0; i < goldens.size(); ++i) {
     h.add(c.images[i]).add(goldens[i].size());
-    for (const fs::path& g : goldens[i]) {
-      h.add(g.parent_path().filename().string()).add_file(g);
+    for (const ReadGolden& read : goldens[i]) {
+      const fs::path& g = read.file;
+      h.add(g.parent_path().filename().string()).add(g.filename().string());
+      h.add(std::span<const unsigned char>(read.bytes)).add(read.error);
       // The region map beside it decides which pixels each region's gates see.
       const fs::path map = region_map(g, c.images[i]);
       if (!t.regions.empty() && fs::is_regular_file(map)) h.add_file(map);

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "harness/goldens.hpp"
 #include "harness/suite.hpp"
 
 namespace aosuite::harness {
@@ -18,6 +19,6 @@ std::string image_input_hash(const Case& c);
 // Everything a verdict depends on besides the render: the accepted goldens' bytes and names,
 // the tolerance and its mask image.
 std::string judge_hash(const Case& c, const std::string& input_hash,
-                       const std::vector<std::vector<std::filesystem::path>>& goldens);
+                       const std::vector<std::vector<ReadGolden>>& goldens);
 
 }  // namespace aosuite::harness

@@ -140,6 +140,10 @@ void kill_tree(pid_t command, int& command_status) {
   ::prctl(PR_SET_CHILD_SUBREAPER, 1);
   ::signal(SIGCHLD, SIG_DFL);  // pending while blocked, for sigwaitinfo (never SIG_IGN's reaping)
   ::prctl(PR_SET_PDEATHSIG, SIGTERM);  // aosuite gone (killed, Ctrl-C): end the command too
+  // Out of aosuite's process group: `kill -9 -- -PGID` or `timeout -s KILL` (which signals its
+  // whole group) would kill the reaper beside aosuite, before it could end the command. Outside
+  // it, only aosuite dies, and its death reaches the reaper as the signal above.
+  ::setpgid(0, 0);
   sigset_t wanted, none;
   sigemptyset(&wanted);
   sigemptyset(&none);
@@ -155,11 +159,14 @@ void kill_tree(pid_t command, int& command_status) {
     if (fd >= static_cast<int>(from)) ::syscall(SYS_close_range, from, fd - 1, 0), from = fd + 1;
   }
   ::syscall(SYS_close_range, from, ~0U, 0);
+  const pid_t self = ::getpid();
   const pid_t command = ::fork();
   if (command == 0) {
-    // The command: its own process group (a terminal's Ctrl-C reaches the reaper, which ends
-    // the whole tree), default signal handling, the files as stdin, stdout and stderr.
+    // The command: its own process group, default signal handling, the files as stdin, stdout
+    // and stderr; it dies with the reaper, should the reaper alone be killed.
     ::setpgid(0, 0);
+    ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+    if (::getppid() != self) ::_exit(128 + SIGKILL);  // the reaper died before that was set
     for (int s = 1; s < NSIG; ++s) ::signal(s, SIG_DFL);
     ::sigprocmask(SIG_SETMASK, &none, nullptr);
     if (::dup2(in, 0) < 0 || ::dup2(out, 1) < 0 || ::dup2(err, 2) < 0 || ::chdir(cwd) != 0) {

@@ -18,10 +18,12 @@ struct CommandOutcome {
 // line giving the full size), and `env` added to this process's environment.
 // A command never outlives it: the command runs under a reaper, a forked copy of this process
 // that is the child subreaper of the command's whole tree. When the command exits, after
-// `timeout_seconds`, or when this process dies or is signalled (Ctrl-C, TERM, HUP reach the
-// reaper through the process group or PR_SET_PDEATHSIG), the reaper kills every descendant,
-// those that called setsid or double-forked included, and reaps them. Throws
-// std::runtime_error when it cannot be started (naming argv[0]).
+// `timeout_seconds`, or when this process dies, however (PR_SET_PDEATHSIG), the reaper kills
+// every descendant, those that called setsid or double-forked included, and reaps them. The
+// reaper sits in a process group of its own, so a signal to this process's group, SIGKILL
+// included, ends this process and then, through it, the command's tree; the command itself
+// also dies with its reaper. Throws std::runtime_error when it cannot be started (naming
+// argv[0]).
 CommandOutcome run_command(const std::vector<std::string>& argv, const std::filesystem::path& cwd,
                            const std::filesystem::path& stdout_file,
                            const std::filesystem::path& stderr_file, double timeout_seconds,

@@ -14,6 +14,8 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "common/file_io.hpp"
+
 namespace aosuite::harness {
 
 namespace fs = std::filesystem;
@@ -124,6 +126,20 @@ bool legacy_temporary(const std::string& name) {
 }
 
 }  // namespace
+
+std::vector<ReadGolden> read_goldens(const std::vector<fs::path>& files) {
+  std::vector<ReadGolden> out;
+  for (const fs::path& f : files) {
+    ReadGolden& g = out.emplace_back();
+    g.file = f;
+    try {
+      g.bytes = read_regular_file(f);
+    } catch (const std::exception& e) {
+      g.error = e.what();
+    }
+  }
+  return out;
+}
 
 std::vector<fs::path> accepted_goldens(const fs::path& case_dir, std::string_view image,
                                        std::string_view ext, std::string_view platform) {

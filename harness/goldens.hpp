@@ -29,6 +29,16 @@ std::vector<std::filesystem::path> accepted_goldens(const std::filesystem::path&
                                                     std::string_view image, std::string_view ext,
                                                     std::string_view platform);
 
+// An accepted golden as one judgement reads it, once: the judge hash covers these bytes and the
+// verdict judges these bytes, so a bless between two reads can never cache a verdict against
+// goldens it did not judge. `error` (then no bytes): why it could not be read.
+struct ReadGolden {
+  std::filesystem::path file;
+  std::vector<unsigned char> bytes;
+  std::string error;
+};
+std::vector<ReadGolden> read_goldens(const std::vector<std::filesystem::path>& files);
+
 // Where `bless` writes: the generic golden, or the platform's when `platform` is not empty,
 // as variant `tag` when not empty.
 std::filesystem::path golden_path(const std::filesystem::path& case_dir, std::string_view image,

@@ -76,13 +76,14 @@ namespace {
 
 // One golden against the render; kError when either cannot be read.
 ImageVerdict against(std::string_view image, std::span<const unsigned char> render_bytes,
-                     const fs::path& golden_file, const Tolerance& t, bool want_diff,
+                     const ReadGolden& golden, const Tolerance& t, bool want_diff,
                      const Counted* counted) {
+  const fs::path& golden_file = golden.file;
+  const std::vector<unsigned char>& bytes = golden.bytes;
   ImageVerdict v;
   v.image = std::string(image), v.golden = golden_file;
   try {
-    // The bytes judged are the bytes hashed: a bless between two reads cannot part them.
-    const std::vector<unsigned char> bytes = read_file(golden_file, kMaxFileBytes);
+    if (!golden.error.empty()) throw std::runtime_error(golden.error);
     v.golden_hash = golden_hash(bytes);
     comparison::Options o;
     o.want_diff = o.want_heatmap = want_diff;
@@ -114,8 +115,8 @@ bool closer(const ImageVerdict& a, const ImageVerdict& b) {
 }  // namespace
 
 ImageVerdict judge(std::string_view image, std::span<const unsigned char> render_bytes,
-                   const std::vector<fs::path>& goldens, const Tolerance& tolerance, bool want_diff,
-                   const Counted* counted) {
+                   const std::vector<ReadGolden>& goldens, const Tolerance& tolerance,
+                   bool want_diff, const Counted* counted) {
   if (goldens.empty()) {
     ImageVerdict v;
     v.image = std::string(image), v.status = Status::kNew, v.message = "no golden yet";
@@ -124,7 +125,7 @@ ImageVerdict judge(std::string_view image, std::span<const unsigned char> render
   // Every accepted golden is read, even after one passes: a damaged golden or variant is an
   // error to repair, not something another variant may hide.
   std::vector<ImageVerdict> tried;
-  for (const fs::path& g : goldens)
+  for (const ReadGolden& g : goldens)
     tried.push_back(against(image, render_bytes, g, tolerance, want_diff, counted));
   for (const ImageVerdict& v : tried) {
     if (v.status == Status::kError) return v;

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "compare/comparison.hpp"
+#include "harness/goldens.hpp"
 #include "harness/suite.hpp"
 #include "image/rgba_image.hpp"
 
@@ -52,7 +53,7 @@ std::string golden_hash(std::span<const unsigned char> bytes);
 // metric to the flagged pixels.
 using comparison::Counted;
 ImageVerdict judge(std::string_view image, std::span<const unsigned char> render_bytes,
-                   const std::vector<std::filesystem::path>& goldens, const Tolerance& tolerance,
+                   const std::vector<ReadGolden>& goldens, const Tolerance& tolerance,
                    bool want_diff, const Counted* counted = nullptr);
 
 }  // namespace aosuite::harness

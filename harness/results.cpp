@@ -266,7 +266,7 @@ RunResults read_results(const fs::path& dir) {
   if (!fs::is_regular_file(fs::symlink_status(file, ec))) {
     throw std::runtime_error(file.string() + ": cannot read (no run results there)");
   }
-  const std::vector<unsigned char> bytes = read_file(file, kMaxFileBytes);
+  const std::vector<unsigned char> bytes = read_regular_file(file);
   try {
     return run_from_json(json::parse(bytes));
   } catch (const std::exception& e) {

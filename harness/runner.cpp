@@ -2,11 +2,15 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <atomic>
+#include <cerrno>
 #include <chrono>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <mutex>
+#include <optional>
 #include <span>
 #include <stdexcept>
 #include <thread>
@@ -166,16 +170,43 @@ std::string last_line(std::string_view text) {
   return std::string(nl == std::string_view::npos ? text : text.substr(nl + 1));
 }
 
+// How a suite allows links out of its folders (check_no_link_out's message).
+constexpr std::string_view kFollowLinks = "`follow_links = true` in the suite allows it";
+
+// A command's output folder ({out}): case_dir/.out-XXXXXX, made empty for this run alone (no
+// two runs, nor a run and a folder left behind by a killed one, ever share it) and removed
+// once its images are read.
+class Staging {
+ public:
+  explicit Staging(const fs::path& case_dir) {
+    std::string p = (fs::absolute(case_dir).lexically_normal() / ".out-XXXXXX").string();
+    if (!::mkdtemp(p.data())) {
+      throw FileError(fmt::format("{}: cannot make the command's output folder: {}",
+                                  case_dir.string(), std::strerror(errno)));
+    }
+    path_ = p;
+  }
+  ~Staging() {
+    std::error_code ec;
+    fs::remove_all(path_, ec);
+  }
+  Staging(const Staging&) = delete;
+  Staging& operator=(const Staging&) = delete;
+  const fs::path& path() const { return path_; }
+
+ private:
+  fs::path path_;
+};
+
 // An image case's images: its command's outputs or its files, checked as PNG and copied into
-// `case_dir`. The command runs in case_dir/.out ({out}), which starts empty.
+// `case_dir`. The command runs in a staging folder of its own ({out}), which starts empty.
 void produce_images(const Case& c, const fs::path& case_dir, CaseResult& r, Rendered& out) {
   const ImageSource& src = *c.source;
   fs::create_directories(case_dir);
   std::vector<fs::path> from = src.files;
+  std::optional<Staging> staging;
   if (!src.command.empty()) {
-    const fs::path work = fs::absolute(case_dir / ".out").lexically_normal();
-    fs::remove_all(work);
-    fs::create_directories(work);
+    const fs::path& work = staging.emplace(case_dir).path();
     std::map<std::string, std::string> values = command_placeholders(c);
     values["out"] = work.string();
     std::vector<std::string> argv;
@@ -206,12 +237,14 @@ void produce_images(const Case& c, const fs::path& case_dir, CaseResult& r, Rend
   }
   for (std::size_t i = 0; i < c.images.size(); ++i) {
     const std::string& name = c.images[i];
-    if (!fs::is_regular_file(from[i])) {
+    if (!fs::exists(from[i])) {
       throw std::runtime_error(src.command.empty() ? from[i].string() + ": no such image file"
                                                    : "the command did not write " + src.outputs[i] +
                                                          " (" + from[i].string() + ")");
     }
-    out.bytes[name] = read_file(from[i], kMaxFileBytes);
+    if (!src.follow_links)
+      check_no_link_out(from[i], staging ? staging->path() : src.dir, kFollowLinks);
+    out.bytes[name] = read_regular_file(from[i]);
     if (src.ext == ".png") check_png(out.bytes[name], from[i].string());
     keep_in_report(case_dir / (name + src.ext), out.bytes[name]);
   }
@@ -232,7 +265,7 @@ bool reuse_render(const Case& c, const CaseResult& prev, const fs::path& case_di
       return false;
   }
   for (const std::string& name : kept_images(c)) {
-    out.bytes[name] = read_file(case_dir / (name + ext_of(c, name)), kMaxFileBytes);
+    out.bytes[name] = read_regular_file(case_dir / (name + ext_of(c, name)));
     if (bytes_hash(out.bytes[name]) != prev.image_hashes.at(name)) return false;
   }
   r.image_hashes = prev.image_hashes;
@@ -346,7 +379,12 @@ std::vector<fs::path> goldens_of(const Suite& suite, const Case& c, const std::s
     if (fs::exists(fs::symlink_status(c.source->golden_file, ec))) return {c.source->golden_file};
     return {};
   }
-  return accepted_goldens(suite.goldens / c.id, image, ext_of(c, image), platform);
+  std::vector<fs::path> found =
+      accepted_goldens(suite.goldens / c.id, image, ext_of(c, image), platform);
+  if (!suite.follow_links) {
+    for (const fs::path& g : found) check_no_link_out(g, suite.goldens, kFollowLinks);
+  }
+  return found;
 }
 
 // foreground_only's pixels: the kept mask's white ones.
@@ -361,9 +399,9 @@ std::optional<Counted> foreground(const Case& c, Rendered& images, const fs::pat
 void judge_case(const Suite& suite, const Case& c, const std::string& platform, const RunOptions& o,
                 const std::optional<CaseResult>& prev, CaseResult& r, Rendered& images) {
   const fs::path case_dir = o.report_dir / "cases" / c.id;
-  std::vector<std::vector<fs::path>> goldens;
+  std::vector<std::vector<ReadGolden>> goldens;
   for (const std::string& image : c.images)
-    goldens.push_back(goldens_of(suite, c, image, platform));
+    goldens.push_back(read_goldens(goldens_of(suite, c, image, platform)));
   r.judge_hash = judge_hash(c, r.input_hash, goldens);
   if (prev && prev->judge_hash == r.judge_hash && prev->status != Status::kError) {
     const double seconds = r.seconds;
@@ -398,14 +436,17 @@ void judge_case(const Suite& suite, const Case& c, const std::string& platform, 
     if (!c.tolerance.regions.empty() && !v.golden.empty()) {
       const fs::path map = region_map(v.golden, name);
       if (fs::is_regular_file(map)) {
-        keep_in_report(case_dir / ("regions_" + name + ".png"), read_file(map));
+        keep_in_report(case_dir / ("regions_" + name + ".png"), read_regular_file(map));
         r.files["regions:" + name] = c.id + "/regions_" + name + ".png";
       }
     }
     if (!v.identical && !v.golden.empty() && v.status != Status::kError) {
       // A copy written under a temporary name and renamed: never a truncated golden image in
       // the report, even on a full disk.
-      keep_in_report(case_dir / ("golden_" + name + ext), read_file(v.golden, kMaxFileBytes));
+      // The bytes judged, not the file as it is now.
+      const auto judged = std::ranges::find(goldens[i], v.golden, &ReadGolden::file);
+      keep_in_report(case_dir / ("golden_" + name + ext),
+                     judged != goldens[i].end() ? judged->bytes : read_regular_file(v.golden));
       r.files["golden:" + name] = c.id + "/golden_" + name + ext;
     } else if (v.identical) {
       r.files["golden:" + name] = c.id + "/" + name + ext;
@@ -423,7 +464,7 @@ void judge_deleted(const Case& c, const RunOptions& o, CaseResult& r) {
   fs::create_directories(case_dir);
   r.files.clear();
   keep_in_report(case_dir / ("golden_image" + c.source->ext),
-                 read_file(c.source->golden_file, kMaxFileBytes));
+                 read_regular_file(c.source->golden_file));
   r.files["golden:image"] = c.id + "/golden_image" + c.source->ext;
   r.status = Status::kFail;
   r.message = "deleted: only in the expected folder";
@@ -512,6 +553,10 @@ RunResults start(const Suite& suite, const RunOptions& o, const std::vector<cons
     run.shard = fmt::format("{}/{}", o.selection.shard_index, o.selection.shard_count);
   }
   fs::create_directories(o.report_dir / "cases");
+  // The last run's page goes before this run writes anything: should its page then fail to be
+  // written (a full disk), the folder shows no page rather than one older than its results.
+  std::error_code ec;
+  fs::remove(o.report_dir / "index.html", ec);
   return run;
 }
 
@@ -703,7 +748,7 @@ RunResults bless(const Suite& suite, const BlessOptions& b) {
                 std::error_code ec;
                 if (!fs::is_regular_file(fs::symlink_status(f, ec)))
                   throw FileError(f.string() + ": not a regular file");
-                images.bytes[image] = read_file(f, kMaxFileBytes);
+                images.bytes[image] = read_regular_file(f);
                 const auto recorded = it->second.image_hashes.find(image);
                 if (recorded == it->second.image_hashes.end() ||
                     recorded->second != bytes_hash(images.bytes[image])) {

@@ -55,13 +55,21 @@ fs::path region_map(const fs::path& golden, std::string_view image) {
   return golden.parent_path() / (std::string(image) + ".regions.png");
 }
 
-bool valid_name(std::string_view id) {
-  return !id.empty() && id.size() <= 200 && id.front() != '.' &&
-         std::all_of(id.begin(), id.end(), [](char ch) {
-           return (ch >= 'a' && ch <= 'z') || (ch >= 'A' && ch <= 'Z') ||
-                  (ch >= '0' && ch <= '9') || ch == '-' || ch == '_' || ch == '.';
-         });
+std::string name_problem(std::string_view id) {
+  if (id.empty()) return "is empty";
+  if (id.size() > kMaxNameLength) {
+    return fmt::format("is {} characters long, over the {} a name may have (it names a folder)",
+                       id.size(), kMaxNameLength);
+  }
+  if (id.front() == '.') return "starts with '.'";
+  const bool allowed = std::all_of(id.begin(), id.end(), [](char ch) {
+    return (ch >= 'a' && ch <= 'z') || (ch >= 'A' && ch <= 'Z') || (ch >= '0' && ch <= '9') ||
+           ch == '-' || ch == '_' || ch == '.';
+  });
+  return allowed ? "" : "may hold only letters, digits, - _ . and not start with '.'";
 }
+
+bool valid_name(std::string_view id) { return name_problem(id).empty(); }
 
 Suite folder_suite(const fs::path& actual, const fs::path& expected, const Tolerance& tolerance) {
   // Relative path -> whether it is in actual, in expected.

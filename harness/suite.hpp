@@ -39,6 +39,7 @@ struct ImageSource {
   double timeout_seconds = 60;
   std::vector<std::filesystem::path> files;  // per image, without a command: a file on disk
   std::filesystem::path dir;                 // the suite's folder ({suite_dir}), absolute
+  bool follow_links = false;                 // the suite's follow_links (Suite)
   // Folder mode: the one expected file that stands in for the goldens folder (may not exist),
   // and whether the actual file is missing (the image was deleted).
   std::filesystem::path golden_file;
@@ -88,6 +89,9 @@ struct Suite {
   // suite file, from any current directory; `--goldens` replaces it (goldens_given).
   std::filesystem::path goldens;
   bool goldens_given = false;
+  // `follow_links = true`: links out of the suite's folder, its goldens folder or a command's
+  // {out} are followed; by default each is an error naming it (common/file_io.hpp).
+  bool follow_links = false;
   std::vector<Case> cases;
   // "aosuite bless SUITE" or "aosuite bless --actual A --expected E": how commands name it.
   std::string bless_prefix;
@@ -104,7 +108,10 @@ Suite folder_suite(const std::filesystem::path& actual, const std::filesystem::p
 
 // Whether `name` is safe as one path component of a suite name, case id or variant tag:
 // letters, digits, '-', '_', '.', not starting with '.' (so never "." or ".." nor hidden), at
-// most 200 characters.
+// most kMaxNameLength characters.
+inline constexpr std::size_t kMaxNameLength = 200;
 bool valid_name(std::string_view name);
+// Why `name` is not a valid_name() ("is 230 characters long, ..."); empty when it is.
+std::string name_problem(std::string_view name);
 
 }  // namespace aosuite::harness

@@ -314,7 +314,15 @@ void only_known_keys(const Reader& r, const toml::table& t, std::span<const std:
 }
 
 // A [[case]] with `command` or `files`.
-Case image_case(const Reader& r, const fs::path& dir, const toml::table& t, Common c) {
+// "case id 'aaaa…' is 230 characters long, ...": the name (its start, when long) and why.
+std::string bad_name(std::string_view what, std::string_view name) {
+  const bool cut = name.size() > 60;
+  return fmt::format("{} '{}{}' {}", what, printable(name.substr(0, 60)), cut ? "..." : "",
+                     name_problem(name));
+}
+
+Case image_case(const Reader& r, const fs::path& dir, const toml::table& t, Common c,
+                bool follow_links) {
   r.only_keys(t, [] {
     std::vector<std::string_view> keys(std::begin(kCommonKeys), std::end(kCommonKeys));
     keys.insert(keys.end(), std::begin(kImageCaseKeys), std::end(kImageCaseKeys));
@@ -325,12 +333,10 @@ Case image_case(const Reader& r, const fs::path& dir, const toml::table& t, Comm
   if (!name) r.fail(t.source(), "an image case needs name = \"<case id>\"");
   Case k;
   k.id = r.string(*name, "name");
-  if (!valid_name(k.id)) {
-    r.fail(name->source(), "case id '" + printable(k.id) +
-                               "' may hold only letters, digits, - _ . and not start with '.'");
-  }
+  if (!valid_name(k.id)) r.fail(name->source(), bad_name("case id", k.id));
   auto src = std::make_shared<ImageSource>();
   src->dir = fs::absolute(dir).lexically_normal();
+  src->follow_links = follow_links;
   // An image case has the size of its images; width and height are only what the suite tells
   // its command ({width}, {height}), both or neither: never a default standing in for one.
   if (c.width_given != c.height_given) {
@@ -362,8 +368,13 @@ Case image_case(const Reader& r, const fs::path& dir, const toml::table& t, Comm
     if (const toml::node* n = t.get("inputs")) {
       for (const std::string& in : r.strings(*n, "inputs", true)) {
         src->inputs.push_back(dir / in);
-        if (!fs::is_regular_file(src->inputs.back())) {
+        std::error_code ec;
+        if (!fs::exists(src->inputs.back(), ec)) {
           r.fail(n->source(), "no input file " + printable(src->inputs.back().string()));
+        }
+        if (!fs::is_regular_file(src->inputs.back(), ec)) {
+          r.fail(n->source(), "input " + printable(src->inputs.back().string()) +
+                                  " is not a regular file (a device, FIFO or folder)");
         }
       }
     }
@@ -436,7 +447,7 @@ Suite load_suite(const fs::path& file) {
   }
   const Reader r(file);
   const fs::path dir = file.parent_path().empty() ? fs::path(".") : file.parent_path();
-  r.only_keys(root, {"name", "goldens", "defaults", "case"});
+  r.only_keys(root, {"name", "goldens", "follow_links", "defaults", "case"});
 
   Suite suite;
   suite.file = file;
@@ -444,14 +455,15 @@ Suite load_suite(const fs::path& file) {
   if (const toml::node* n = root.get("name")) suite.name = r.string(*n, "name");
   if (!valid_name(suite.name)) {
     r.fail(root.get("name") ? root.get("name")->source() : root.source(),
-           "suite name '" + printable(suite.name) +
-               "' must be letters, digits, - _ . and not start with '.' (it names folders)");
+           bad_name("suite name", suite.name));
   }
   // Beside the suite file, whatever the current directory: a suite checked from elsewhere
   // finds its goldens, and bless never writes a second tree there.
   suite.goldens = dir / "goldens" / suite.name;
   if (const toml::node* n = root.get("goldens")) suite.goldens = dir / r.string(*n, "goldens");
   suite.goldens = suite.goldens.lexically_normal();
+  if (const toml::node* n = root.get("follow_links"))
+    suite.follow_links = r.boolean(*n, "follow_links");
 
   Common defaults;
   const toml::table* defaults_table = nullptr;
@@ -469,7 +481,7 @@ Suite load_suite(const fs::path& file) {
     const toml::table& t = r.table(node, "case");
     std::vector<Case> made;
     if (t.get("command") || t.get("files")) {
-      made.push_back(image_case(r, dir, t, defaults));
+      made.push_back(image_case(r, dir, t, defaults, suite.follow_links));
     } else {
       const CaseKind* kind = loading_kinds(r, t.source(), [&] { return kind_for(t); });
       if (!kind) {
@@ -489,10 +501,7 @@ Suite load_suite(const fs::path& file) {
       kind->expand(table, made);
     }
     for (Case& k : made) {
-      if (!valid_name(k.id)) {
-        r.fail(t.source(), "case id '" + printable(k.id) +
-                               "' may hold only letters, digits, - _ . and not start with '.'");
-      }
+      if (!valid_name(k.id)) r.fail(t.source(), bad_name("case id", k.id));
       if (!ids.insert(k.id).second) r.fail(t.source(), "duplicate case '" + k.id + "'");
       suite.cases.push_back(std::move(k));
     }

@@ -79,7 +79,7 @@ fs::path golden_now(const fs::path& goldens, const std::string& id, const fs::pa
 // The judged golden still holds the bytes the run measured against.
 bool golden_unchanged(const fs::path& file, const std::string& hash) {
   try {
-    return golden_hash(read_file(file, kMaxFileBytes)) == hash;
+    return golden_hash(read_regular_file(file)) == hash;
   } catch (const std::exception&) {
     return false;
   }

@@ -317,8 +317,9 @@ outputs = ["x.png"]
 }
 
 // A command never outlives aosuite: what it leaves running (a `setsid` daemon, a double-forked
-// orphan) is killed when it exits, when it times out, and when aosuite is stopped by TERM or by
-// a terminal's Ctrl-C (SIGINT to aosuite's process group).
+// orphan) is killed when it exits, when it times out, and when aosuite is stopped by TERM, by
+// a terminal's Ctrl-C (SIGINT to aosuite's process group) or by SIGKILL, to aosuite alone or to
+// its whole process group (`timeout -s KILL`, `kill -9 -- -PGID`).
 TEST_F(ImageCases, NoProcessOfACommandOutlivesIt) {
   std::ofstream(dir_ / "s" / "tree.sh") << R"SH(#!/bin/sh
 here="$1"
@@ -365,7 +366,8 @@ timeout = 2
   EXPECT_EQ(r.rc, 2) << r.out << r.err;
   EXPECT_NE(r.out.find("timed out"), std::string::npos) << r.out;
   EXPECT_TRUE(all_gone()) << "the timeout left processes behind";
-  for (const char* how : {"kill -TERM $p", "kill -INT -- -$p"}) {
+  for (const char* how :
+       {"kill -TERM $p", "kill -INT -- -$p", "kill -KILL $p", "kill -KILL -- -$p"}) {
     fresh();
     // aosuite in a process group of its own, as a terminal's foreground job is.
     test::run_shell("cd " + dir_.path().string() + " && (setsid " + aosuite_bin() +
@@ -408,15 +410,37 @@ TEST_F(ImageCases, OneRunAtATimeInAReportOrGoldensFolder) {
   r = aosuite("bless s/b.toml --goldens G --report R2");
   EXPECT_EQ(r.rc, 2) << r.out << r.err;
   EXPECT_NE(r.err.find("G: in use by another aosuite"), std::string::npos) << r.err;
+  // Dead once it is gone or a zombie (its files, and so its lock, are released by then).
+  const auto await_end = [](pid_t pid) {
+    for (int i = 0; i < 1000 && ::kill(pid, 0) == 0; ++i) {
+      const std::string stat = read_text(fs::path("/proc") / std::to_string(pid) / "stat");
+      if (stat.empty() || stat.find(") Z ") != std::string::npos) break;
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+  };
+  // The lock belongs to the path: a CI job that deletes and recreates its report folder
+  // (`rm -rf D && aosuite check ... --report D`) while another run writes there is refused, and
+  // so is a link to the folder.
+  const pid_t writer = in_background("check s/a.toml --report D");
+  for (const char* folder : {"L", "D"}) {
+    test::run_shell("cd " + dir_.path().string() +
+                        (folder == std::string("L") ? " && ln -s D L" : " && rm -rf D"),
+                    dir_.path());
+    r = aosuite(std::string("check s/b.toml --report ") + folder);
+    EXPECT_EQ(r.rc, 2) << folder << ": " << r.out << r.err;
+    EXPECT_NE(r.err.find("in use by another aosuite (pid " + std::to_string(writer)),
+              std::string::npos)
+        << folder << ": " << r.err;
+  }
+  await_end(writer);
+  // One folder named for two jobs of one run is said to be that, not another aosuite.
+  r = aosuite("bless s/a.toml --goldens X --report X");
+  EXPECT_EQ(r.rc, 2) << r.out << r.err;
+  EXPECT_NE(r.err.find("X: named twice in one run"), std::string::npos) << r.err;
   // A holder killed with SIGKILL leaves no lock behind.
   const pid_t holder = in_background("check s/a.toml --report K");
   ASSERT_EQ(::kill(holder, SIGKILL), 0);
-  // Dead once it is gone or a zombie (its files, and so its lock, are released by then).
-  for (int i = 0; i < 500 && ::kill(holder, 0) == 0; ++i) {
-    const std::string stat = read_text(fs::path("/proc") / std::to_string(holder) / "stat");
-    if (stat.empty() || stat.find(") Z ") != std::string::npos) break;
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  }
+  await_end(holder);
   r = aosuite("check s/a.toml --report K");
   EXPECT_EQ(r.rc, 1) << r.out << r.err;
   // A run that stops before writing (nothing selected) leaves no report folder.
@@ -495,6 +519,129 @@ outputs = ["x.png"]
   EXPECT_EQ(r.rc, 2) << r.out << r.err;
   EXPECT_NE(r.out.find("x.png: file larger than the 1024 MiB memory budget"), std::string::npos)
       << r.out;
+}
+
+// A suite's files are regular files: a `files` entry, an input or a golden that is (or links
+// to) a device such as /dev/zero, or a FIFO, is an error naming it at once, never read whole.
+TEST_F(ImageCases, DevicesAndFifosInASuiteAreRefusedByName) {
+  fs::create_symlink("/dev/zero", dir_ / "s" / "zero.png");
+  ASSERT_EQ(::mkfifo((dir_ / "s" / "fifo.png").c_str(), 0600), 0);
+  for (const char* entry : {"zero.png", "fifo.png"}) {
+    std::ofstream(dir_ / "s" / "f.toml")
+        << "[[case]]\nname = \"f\"\nfiles = [\"" << entry << "\"]\n";
+    const auto t0 = std::chrono::steady_clock::now();
+    const test::Outcome r = aosuite("check s/f.toml");
+    EXPECT_LT(std::chrono::steady_clock::now() - t0, std::chrono::seconds(20)) << entry;
+    EXPECT_EQ(r.rc, 2) << entry << ": " << r.out << r.err;
+    EXPECT_NE((r.out + r.err).find(std::string(entry) + ": is a "), std::string::npos)
+        << entry << ": " << r.out << r.err;
+  }
+  std::ofstream(dir_ / "s" / "i.toml") << R"(
+[[case]]
+name = "i"
+command = ["cp", "{suite_dir}/red.png", "{out}/x.png"]
+inputs = ["zero.png"]
+outputs = ["x.png"]
+)";
+  test::Outcome r = aosuite("check s/i.toml");
+  EXPECT_EQ(r.rc, 2) << r.out << r.err;
+  EXPECT_NE(r.err.find("zero.png is not a regular file"), std::string::npos) << r.err;
+  // A golden that links to /dev/zero leaves the goldens folder; followed, it is a device.
+  ASSERT_EQ(aosuite("bless s/t.toml").rc, 0);
+  const fs::path golden = dir_ / "s" / "goldens" / "t" / "chart" / "chart.png";
+  fs::remove(golden);
+  fs::create_symlink("/dev/zero", golden);
+  r = aosuite("check s/t.toml");
+  EXPECT_EQ(r.rc, 2) << r.out << r.err;
+  EXPECT_NE(r.out.find("chart.png: is a link out of s/goldens/t (to /dev/zero)"), std::string::npos)
+      << r.out;
+  const std::string suite = read_text(dir_ / "s" / "t.toml");
+  std::ofstream(dir_ / "s" / "t.toml") << "follow_links = true\n" << suite;
+  r = aosuite("check s/t.toml");
+  EXPECT_EQ(r.rc, 2) << r.out << r.err;
+  EXPECT_NE(r.out.find("chart.png: is a device, not a regular file"), std::string::npos) << r.out;
+}
+
+// A page that cannot be written (a full disk; here a file size limit) leaves no page, never
+// the last run's: its PASS beside this run's FAIL in results.json and this run's images.
+TEST_F(ImageCases, AFailedPageWriteLeavesNoOlderPage) {
+  ASSERT_EQ(aosuite("bless s/t.toml").rc, 0);
+  ASSERT_EQ(aosuite("check s/t.toml").rc, 0);
+  const fs::path page = dir_ / "reports" / "t" / "index.html";
+  ASSERT_TRUE(fs::exists(page));
+  ASSERT_GT(fs::file_size(page), 16u << 10);  // over the limit below, unlike results.json
+  std::ofstream(dir_ / "s" / "colour.txt") << "green";
+  const test::Outcome r = aosuite("check s/t.toml", "trap '' XFSZ; ulimit -f 16;");
+  EXPECT_EQ(r.rc, 2) << r.out << r.err;
+  EXPECT_NE(r.err.find("index.html"), std::string::npos) << r.err;
+  const auto results = nlohmann::json::parse(read_text(dir_ / "reports" / "t" / "results.json"));
+  EXPECT_EQ(results["cases"][0]["status"], "FAIL");
+  EXPECT_FALSE(fs::exists(page)) << read_text(page).substr(0, 200);
+}
+
+// A link may not lead out of the suite's folder (a `files` entry, or a folder on its way), out
+// of a command's {out} (a file or folder it links), or out of the goldens folder: each is an
+// ERROR naming it, and bless writes nothing from it. A link within its folder is followed, and
+// `follow_links = true` follows them all.
+TEST_F(ImageCases, LinksOutOfASuitesFoldersAreErrorsUnlessAllowed) {
+  fs::create_directories(dir_ / "outside" / "d");
+  fs::copy_file(dir_ / "s" / "green.png", dir_ / "outside" / "secret.png");
+  fs::copy_file(dir_ / "s" / "green.png", dir_ / "outside" / "d" / "a.png");
+  fs::create_symlink(dir_ / "outside" / "secret.png", dir_ / "s" / "lnk.png");
+  fs::create_symlink(dir_ / "outside" / "d", dir_ / "s" / "ldir");
+  fs::create_symlink("red.png", dir_ / "s" / "inner.png");
+  const std::string outside = (dir_ / "outside").string();
+  std::ofstream(dir_ / "s" / "l.toml") << R"(
+[[case]]
+name = "file"
+files = ["lnk.png"]
+
+[[case]]
+name = "folder"
+files = ["ldir/a.png"]
+
+[[case]]
+name = "out_file"
+command = ["ln", "-s", ")" + outside + R"(/secret.png", "{out}/a.png"]
+outputs = ["a.png"]
+
+[[case]]
+name = "out_folder"
+command = ["ln", "-s", ")" + outside + R"(/d", "{out}/sub"]
+outputs = ["sub/a.png"]
+
+[[case]]
+name = "inner"
+files = ["inner.png"]
+)";
+  test::Outcome r = aosuite("bless s/l.toml");
+  EXPECT_EQ(r.rc, 2) << r.out << r.err;
+  for (const char* id : {"file", "folder", "out_file", "out_folder"}) {
+    EXPECT_NE(r.out.find(std::string("NOT BLESSED ") + id), std::string::npos)
+        << id << ": " << r.out;
+    EXPECT_FALSE(fs::exists(dir_ / "s" / "goldens" / "l" / id)) << id;
+  }
+  EXPECT_NE(r.out.find("lnk.png: is a link out of"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("a.png: is a link out of"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("`follow_links = true` in the suite allows it"), std::string::npos) << r.out;
+  EXPECT_TRUE(fs::exists(dir_ / "s" / "goldens" / "l" / "inner" / "inner.png"));
+  // A goldens folder of a case that is a link out of the goldens folder.
+  ASSERT_EQ(aosuite("bless s/t.toml").rc, 0);
+  fs::rename(dir_ / "s" / "goldens" / "t" / "chart", dir_ / "outside" / "chart");
+  fs::create_symlink(dir_ / "outside" / "chart", dir_ / "s" / "goldens" / "t" / "chart");
+  r = aosuite("check s/t.toml");
+  EXPECT_EQ(r.rc, 2) << r.out << r.err;
+  EXPECT_NE(r.out.find("chart.png: is a link out of s/goldens/t"), std::string::npos) << r.out;
+  // Allowed: the same suite passes, and bless takes the linked files.
+  for (const char* suite : {"l", "t"}) {
+    const std::string text = read_text(dir_ / "s" / (std::string(suite) + ".toml"));
+    std::ofstream(dir_ / "s" / (std::string(suite) + ".toml")) << "follow_links = true\n" << text;
+  }
+  EXPECT_EQ(aosuite("check s/t.toml").rc, 0);
+  r = aosuite("bless s/l.toml");
+  EXPECT_EQ(r.rc, 0) << r.out << r.err;
+  EXPECT_EQ(read_file(dir_ / "s" / "goldens" / "l" / "file" / "lnk.png"),
+            read_file(dir_ / "outside" / "secret.png"));
 }
 
 // Reuse is safe by default (issue 40): a command case is run again when what it runs changes,
@@ -736,6 +883,32 @@ outputs = ["x.png"]
   }
 }
 
+// A command runs in a folder of its own run's ({out}, its working folder): two runs of one case
+// never share it, so one never judges what the other wrote, and none is left afterwards.
+TEST_F(ImageCases, EachRunsCommandWritesInAFolderOfItsOwnLeftNowhere) {
+  std::ofstream(dir_ / "s" / "o.toml") << R"(
+[[case]]
+name = "c"
+command = ["sh", "-c", "pwd >> {suite_dir}/cwd.txt; echo {out} >> {suite_dir}/out.txt; cp {suite_dir}/red.png {out}/x.png"]
+outputs = ["x.png"]
+)";
+  for (int run = 0; run < 2; ++run) {
+    const test::Outcome r = aosuite("check s/o.toml --no-reuse");
+    EXPECT_EQ(r.rc, 1) << r.out << r.err;  // NEW
+  }
+  EXPECT_EQ(read_text(dir_ / "s" / "cwd.txt"), read_text(dir_ / "s" / "out.txt"));
+  std::istringstream lines(read_text(dir_ / "s" / "out.txt"));
+  std::vector<std::string> outs;
+  for (std::string line; std::getline(lines, line);) outs.push_back(line);
+  ASSERT_EQ(outs.size(), 2u);
+  EXPECT_NE(outs[0], outs[1]);
+  const std::string case_dir = fs::canonical(dir_ / "reports" / "o" / "cases" / "c").string();
+  for (const std::string& out : outs) {
+    EXPECT_TRUE(out.starts_with(case_dir + "/.out-")) << out;
+    EXPECT_FALSE(fs::exists(out)) << out;
+  }
+}
+
 // Case fields go into the argv as they are; inside `sh -c` they are shell-quoted, so a field
 // is never shell syntax.
 TEST_F(ImageCases, PlaceholdersAreArgumentsNeverShellText) {
@@ -743,15 +916,14 @@ TEST_F(ImageCases, PlaceholdersAreArgumentsNeverShellText) {
 [[case]]
 name = "quoted"
 params = { label = "$(touch pwned); 'x' \"y\"", n = 3 }
-command = ["sh", "-c", "printf '%s|%s' {label} {n} > label.txt && cp {suite_dir}/red.png {out}/x.png"]
+command = ["sh", "-c", "printf '%s|%s' {label} {n} > {suite_dir}/label.txt && ls -A > {suite_dir}/ls.txt && cp {suite_dir}/red.png {out}/x.png"]
 outputs = ["x.png"]
 )";
   const test::Outcome r = aosuite("check s/q.toml");
   EXPECT_EQ(r.rc, 1) << r.out << r.err;  // NEW
   EXPECT_FALSE(fs::exists(dir_ / "pwned"));
-  EXPECT_FALSE(fs::exists(dir_ / "reports" / "q" / "cases" / "quoted" / ".out" / "pwned"));
-  EXPECT_EQ(read_text(dir_ / "reports" / "q" / "cases" / "quoted" / ".out" / "label.txt"),
-            "$(touch pwned); 'x' \"y\"|3");
+  EXPECT_EQ(read_text(dir_ / "s" / "ls.txt"), "");  // nothing was run in {out}, its folder
+  EXPECT_EQ(read_text(dir_ / "s" / "label.txt"), "$(touch pwned); 'x' \"y\"|3");
   const auto results = nlohmann::json::parse(read_text(dir_ / "reports" / "q" / "results.json"));
   EXPECT_EQ(results["cases"][0]["params"]["n"], 3);  // typed, not "3"
 

@@ -55,6 +55,20 @@ TEST_F(SuiteFile, NamesThatWouldLeaveTheirFoldersAreRejected) {
   for (const char* bad : {"..", ".", ".x", "../evil", "a/b", "a~b", "a b", ""}) {
     EXPECT_FALSE(valid_name(bad)) << bad;
   }
+  // Too long is said as that, not as a character it does not hold.
+  EXPECT_TRUE(valid_name(std::string(kMaxNameLength, 'a')));
+  EXPECT_EQ(name_problem(std::string(230, 'a')),
+            "is 230 characters long, over the 200 a name may have (it names a folder)");
+  std::ofstream(dir_ / "long.toml")
+      << "[[case]]\nname = \"" << std::string(230, 'c') << "\"\nfiles = [\"x.png\"]\n";
+  try {
+    load_suite(dir_ / "long.toml");
+    ADD_FAILURE() << "an over-long case id was accepted";
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("case id 'cccc"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("...' is 230 characters long"), std::string::npos)
+        << e.what();
+  }
 }
 
 TEST_F(SuiteFile, ImageCasesNameTheirImagesAndKeepTypedParams) {
@@ -295,12 +309,28 @@ class Judge : public ::testing::Test {
     return dir_ / name;
   }
   ImageVerdict run(const std::vector<fs::path>& goldens, const Tolerance& t = {}) {
-    return judge("with_ao", png_, goldens, t, true);
+    return judge("with_ao", png_, read_goldens(goldens), t, true);
   }
   test::TempDir dir_;
   cv::Mat render_;
   std::vector<unsigned char> png_;
 };
+
+// A golden is read once per judgement: the verdict is on the bytes read (those the judge hash
+// covers), whatever a bless writes to the file afterwards.
+TEST_F(Judge, TheGoldenBytesReadOnceAreTheBytesJudged) {
+  const fs::path g = golden("g.png", render_);
+  const std::vector<ReadGolden> read = read_goldens({g});
+  write_png_rgba8(g, cv::Mat(30, 40, CV_8UC4, cv::Scalar(0, 0, 255, 255)));  // a bless since
+  EXPECT_EQ(judge("with_ao", png_, read, {}, true).status, Status::kPass);
+  EXPECT_EQ(judge("with_ao", png_, read_goldens({g}), {}, true).status, Status::kFail);
+  const std::vector<ReadGolden> none = read_goldens({dir_ / "missing.png"});
+  ASSERT_EQ(none.size(), 1u);
+  EXPECT_TRUE(none[0].bytes.empty());
+  const ImageVerdict v = judge("with_ao", png_, none, {}, true);
+  EXPECT_EQ(v.status, Status::kError);
+  EXPECT_NE(v.message.find("missing.png"), std::string::npos) << v.message;
+}
 
 TEST_F(Judge, IdenticalBytesPassWithoutComparing) {
   write_file_atomic(dir_ / "g.png", png_);

@@ -268,7 +268,7 @@ TEST_F(MeshFiles, CountsBeyondTheFileAreRefusedAtOnce) {
   big_list.replace(big_list.find("element face 4"), 14, "element face 1000000000");
   std::string ascii_faces = tetra_ascii_ply();
   ascii_faces.replace(ascii_faces.find("element face 4"), 14, "element face " + huge);
-  for (const auto& [name, text, expected] :
+  for (const auto& [name, text, expected_binding] :
        std::vector<std::tuple<std::string, std::string, std::string>>{
            {"junk.ply", ascii, "element 'junk' 1 of " + huge + " is missing"},
            {"junk_le.ply", binary, "element 'junk' 93 of " + huge + " is missing"},
@@ -279,6 +279,7 @@ TEST_F(MeshFiles, CountsBeyondTheFileAreRefusedAtOnce) {
             "face 2 of 4000000000 is missing"},
            {"both.off", "OFF\n" + huge + " " + huge + " 0\n0 0 0\n", "vertex 2 of " + huge}}) {
     const fs::path p = file(name, text);
+    const std::string& expected = expected_binding;  // clang 14 cannot capture a binding
     within(
         std::chrono::seconds(5),
         [&] {
@@ -646,7 +647,7 @@ TEST_F(SceneFiles, TheCommandLineRefusesBadScenesWithExit2AndOneLine) {
   write(dir_ / "junk.ply", ply);
   write(dir_ / "esc.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 \x1b[2J\xff\n");
   const std::string view = std::string(kView);
-  for (const auto& [name, toml, expected] :
+  for (const auto& [name, toml, expected_binding] :
        std::vector<std::tuple<std::string, std::string, std::string>>{
            {"junk.toml", "[[meshes]]\nfile = \"junk.ply\"\n" + view, "junk.ply:"},
            {"esc.toml", "[[meshes]]\nfile = \"esc.off\"\n" + view, "\\x1b[2J\\xff"},
@@ -655,6 +656,7 @@ TEST_F(SceneFiles, TheCommandLineRefusesBadScenesWithExit2AndOneLine) {
             "[[meshes]]\nsphere = { centre = [0, 0, 0], radius = 1, segments = 1024 }\n" + view,
             "limit of 1000"}}) {
     const fs::path p = scene(toml, name);
+    const std::string& expected = expected_binding;  // clang 14 cannot capture a binding
     for (const std::string& cmd :
          {"scenes " + p.string(), "render --width 8 --height 8 --out " + (dir_ / "out").string() +
                                       " --scene " + p.string()}) {
