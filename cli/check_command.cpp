@@ -1,10 +1,12 @@
 // `aosuite check`, `aosuite bless` and `aosuite report merge`: the harness on the command line.
 #include <fmt/format.h>
 
+#include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <set>
+#include <utility>
 
 #include "cli/commands.hpp"
 #include "common/folder_lock.hpp"
@@ -17,6 +19,14 @@
 
 namespace aosuite::cli {
 namespace {
+
+// Prints to stdout, going on when its reader has gone (`aosuite bless | head -1`): SIGPIPE is
+// ignored (main.cpp), so the run goes on to its end and only what it prints is lost.
+template <typename... T>
+void say(fmt::format_string<T...> format, T&&... args) {
+  const std::string text = fmt::format(format, std::forward<T>(args)...);
+  (void)!std::fwrite(text.data(), 1, text.size(), stdout);
+}
 
 namespace fs = std::filesystem;
 namespace hs = aosuite::harness;
@@ -163,12 +173,12 @@ void print_progress(const hs::CaseResult& r, int done, int total) {
   }
   if (r.status != hs::Status::kPass && !r.message.empty()) detail += "  " + r.message;
   if (r.kind == "folder") detail = "  " + r.source + detail;
-  fmt::print("[{:>{}}/{}] {:<5} {}{}  {:.2f} s{}{}\n", done, fmt::formatted_size("{}", total),
-             total, hs::status_name(r.status), r.id, hs::printable(detail), r.seconds,
-             r.reused               ? " (unchanged, reused)"
-             : r.not_reused.empty() ? ""
-                                    : " (" + r.not_reused + ")",
-             r.attempts > 1 ? fmt::format(" ({} attempts)", r.attempts) : "");
+  say("[{:>{}}/{}] {:<5} {}{}  {:.2f} s{}{}\n", done, fmt::formatted_size("{}", total), total,
+      hs::status_name(r.status), r.id, hs::printable(detail), r.seconds,
+      r.reused               ? " (unchanged, reused)"
+      : r.not_reused.empty() ? ""
+                             : " (" + r.not_reused + ")",
+      r.attempts > 1 ? fmt::format(" ({} attempts)", r.attempts) : "");
   std::fflush(stdout);
 }
 
@@ -213,8 +223,7 @@ void print_stale(const hs::RunResults& run) {
   if (!images) return;
   std::string list;
   for (const std::string& n : named) list += (list.empty() ? "" : "; ") + n;
-  fmt::print(
-      "stale budgets: {} passing image{} use under a tenth of a limit ({}{}; results.json "
+  say("stale budgets: {} passing image{} use under a tenth of a limit ({}{}; results.json "
       "\"stale\" lists them)\n",
       images, images == 1 ? "" : "s", hs::printable(list), images > named.size() ? "; ..." : "");
 }
@@ -252,41 +261,40 @@ int finish(const hs::RunResults& run, const fs::path& report_dir, const std::str
                                ? std::string()
                                : hs::printable(run.bless_prefix + " --failed --report " +
                                                hs::shell_quote(report_dir.string()))}};
-    fmt::print("{}\n", summary.dump());
+    say("{}\n", summary.dump());
     std::fflush(stdout);
     return hs::exit_code(n);
   }
   const std::string flaky = (n.flaky ? fmt::format(", {} flaky", n.flaky) : "") +
                             (n.warn ? fmt::format(", {} with warnings", n.warn) : "");
   if (out.skipped && !out.skipped->empty()) {
-    fmt::print("skipped {} file{}: {}\n", out.skipped->size(), out.skipped->size() == 1 ? "" : "s",
-               skipped_text(*out.skipped));
+    say("skipped {} file{}: {}\n", out.skipped->size(), out.skipped->size() == 1 ? "" : "s",
+        skipped_text(*out.skipped));
   }
   if (!run.cases.empty() && run.cases.front().kind == "folder") {
     int deleted = 0;
     for (const hs::CaseResult& c : run.cases) deleted += c.message.starts_with("deleted:");
-    fmt::print(
-        "{} image{}: {} unchanged, {} changed, {} new, {} deleted, {} errors{}. Report: {}\n",
+    say("{} image{}: {} unchanged, {} changed, {} new, {} deleted, {} errors{}. Report: {}\n",
         run.cases.size(), run.cases.size() == 1 ? "" : "s", n.pass, n.fail - deleted, n.fresh,
         deleted, n.error, flaky, hs::printable(report));
   } else {
-    fmt::print("{} case{}: {} passed, {} failed, {} new, {} errors{}. Report: {}\n",
-               run.cases.size(), run.cases.size() == 1 ? "" : "s", n.pass, n.fail, n.fresh, n.error,
-               flaky, hs::printable(report));
+    say("{} case{}: {} passed, {} failed, {} new, {} errors{}. Report: {}\n", run.cases.size(),
+        run.cases.size() == 1 ? "" : "s", n.pass, n.fail, n.fresh, n.error, flaky,
+        hs::printable(report));
   }
   print_stale(run);
   for (const hs::CaseResult& c : run.cases) {
     if (c.bless_command.empty()) continue;
-    fmt::print("  to accept {}: {}\n", c.id, hs::printable(c.bless_command));
+    say("  to accept {}: {}\n", c.id, hs::printable(c.bless_command));
   }
   if (to_accept.size() > 1 && !accept_all.empty()) {
-    fmt::print("  to accept all {} failing{} and new cases: {}\n", to_accept.size(),
-               n.warn ? ", warning" : "", hs::printable(accept_all));
+    say("  to accept all {} failing{} and new cases: {}\n", to_accept.size(),
+        n.warn ? ", warning" : "", hs::printable(accept_all));
   }
   if (!to_accept.empty() && !run.bless_prefix.empty()) {
-    fmt::print("  or review {} and accept the images it shows: {} --failed --report {}\n",
-               hs::printable(report), hs::printable(run.bless_prefix),
-               hs::printable(hs::shell_quote(report_dir.string())));
+    say("  or review {} and accept the images it shows: {} --failed --report {}\n",
+        hs::printable(report), hs::printable(run.bless_prefix),
+        hs::printable(hs::shell_quote(report_dir.string())));
   }
   std::fflush(stdout);
   return hs::exit_code(n);
@@ -308,7 +316,7 @@ int run_check(const HarnessArgs& a) {
       throw std::invalid_argument(hs::printable(a.suite + ": the selection holds none of its " +
                                                 std::to_string(suite.cases.size()) + " cases"));
     }
-    for (const hs::Case* c : cases) fmt::print("{}\n", c->id);
+    for (const hs::Case* c : cases) say("{}\n", c->id);
     return kExitSame;
   }
   if (a.json) {
@@ -316,7 +324,7 @@ int run_check(const HarnessArgs& a) {
     o.progress = [](const hs::CaseResult& r, int, int) {
       nlohmann::json j = hs::to_json(r);
       j["type"] = "case";
-      fmt::print("{}\n", j.dump());
+      say("{}\n", j.dump());
       std::fflush(stdout);
     };
   } else {
@@ -360,8 +368,8 @@ int run_bless(const HarnessArgs& given) {
           "{}: names suite file {}, whose suite is '{}', not '{}'; name the suite to bless",
           (fs::path(a.report) / "results.json").string(), a.suite, suite.name, a.report_suite)));
     }
-    fmt::print("suite {} (from {})\n", hs::printable(a.suite),
-               hs::printable((fs::path(a.report) / "results.json").string()));
+    say("suite {} (from {})\n", hs::printable(a.suite),
+        hs::printable((fs::path(a.report) / "results.json").string()));
   }
   hs::BlessOptions b{.run = run_options(suite, a),
                      .platform = a.platform,
@@ -372,26 +380,25 @@ int run_bless(const HarnessArgs& given) {
   // One line per case as it finishes, flushed: a redirected log shows what was written even
   // when bless is killed.
   b.run.progress = [](const hs::CaseResult& r, int done, int total) {
-    fmt::print("[{}/{}] {} {}: {}\n", done, total,
-               r.kept                          ? "KEPT"
-               : r.status == hs::Status::kPass ? "BLESSED"
-                                               : "NOT BLESSED",
-               r.id, hs::printable(r.message));
+    say("[{}/{}] {} {}: {}\n", done, total,
+        r.kept                          ? "KEPT"
+        : r.status == hs::Status::kPass ? "BLESSED"
+                                        : "NOT BLESSED",
+        r.id, hs::printable(r.message));
     std::fflush(stdout);
   };
   // The report folder (bless renders into it, or reads what it judged) and then the goldens.
   const FolderLock report(b.run.report_dir, a.wait), goldens(suite.goldens, a.wait);
   const hs::RunResults run = hs::bless(suite, b);
   if (run.cases.empty()) {
-    fmt::print("nothing to accept: no case failed or is new in {}\n",
-               hs::printable((b.run.report_dir / "results.json").string()));
+    say("nothing to accept: no case failed or is new in {}\n",
+        hs::printable((b.run.report_dir / "results.json").string()));
     return kExitSame;
   }
   const hs::Counts n = hs::count(run);
   int kept = 0;
   for (const hs::CaseResult& c : run.cases) kept += c.kept;
-  fmt::print(
-      "{} of {} cases blessed into {}{}{}\n", n.pass - kept, run.cases.size(),
+  say("{} of {} cases blessed into {}{}{}\n", n.pass - kept, run.cases.size(),
       hs::printable(suite.goldens.string()),
       kept ? fmt::format("; {} passing kept as they were (--force rewrites them)", kept) : "",
       n.error ? fmt::format("; {} not blessed, their goldens as they were (reasons above)", n.error)
@@ -400,14 +407,33 @@ int run_bless(const HarnessArgs& given) {
   return n.error ? kExitError : kExitSame;
 }
 
-// Copies a shard's case folder: its plain files only (no links, nothing outside it), each
-// written under a temporary name and renamed.
+// A shard's case folder as merge copies it: the folder and each of its report files (those
+// with valid names) plain, never a link, which would lead out of the shard or leave the merged
+// report pointing at a file it does not have. Throws naming the first that is not. Returns
+// whether there is a folder to copy.
+bool check_case_folder(const fs::path& from) {
+  std::error_code ec;
+  const fs::file_status st = fs::symlink_status(from, ec);
+  if (!fs::exists(st)) return false;
+  const auto refuse = [](const fs::path& p) {
+    throw std::runtime_error(hs::printable(
+        p.string() + ": a link or special file in a shard's report; nothing was merged"));
+  };
+  if (!fs::is_directory(st)) refuse(from);
+  for (const fs::directory_entry& e : fs::directory_iterator(from)) {
+    if (hs::valid_name(e.path().filename().string()) && !fs::is_regular_file(e.symlink_status()))
+      refuse(e.path());
+  }
+  return true;
+}
+
+// Copies a shard's case folder (check_case_folder): each file written under a temporary name
+// and renamed.
 void copy_case(const fs::path& from, const fs::path& to) {
   fs::create_directories(to);
   for (const fs::directory_entry& e : fs::directory_iterator(from)) {
-    if (!e.is_symlink() && e.is_regular_file() && hs::valid_name(e.path().filename().string())) {
-      write_file_atomic(to / e.path().filename(), read_file(e.path()));
-    }
+    if (hs::valid_name(e.path().filename().string()))
+      write_file_atomic(to / e.path().filename(), read_regular_file(e.path()));
   }
 }
 
@@ -450,6 +476,13 @@ int run_merge(const std::string& out, const std::vector<std::string>& shards,
                                                          parts.back().suite, parts.front().suite)));
     }
   }
+  for (const std::string& dir : shards) {
+    std::error_code ec;
+    if (fs::equivalent(dir, out, ec)) {
+      throw std::runtime_error(hs::printable(
+          fmt::format("--out {} is the shard {}; merge into a folder of its own", out, dir)));
+    }
+  }
   std::set<int> given;
   const int count = shard_count(parts, shards, given);
   std::set<std::string> seen;
@@ -471,6 +504,11 @@ int run_merge(const std::string& out, const std::vector<std::string>& shards,
         given.size() + 1 < std::size_t(count) ? "s" : "", missing,
         given.size() + 1 < std::size_t(count) ? "are" : "is"));
   }
+  std::vector<std::vector<bool>> has_folder(parts.size());
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    for (const hs::CaseResult& c : parts[i].cases)
+      has_folder[i].push_back(check_case_folder(fs::path(shards[i]) / "cases" / c.id));
+  }
   const FolderLock lock(out, wait);
   hs::RunResults merged = parts.front();
   merged.cases.clear();
@@ -480,11 +518,9 @@ int run_merge(const std::string& out, const std::vector<std::string>& shards,
       merged.bless_prefix + " --from-report --report " + hs::shell_quote(fs::path(out).string());
   for (std::size_t i = 0; i < parts.size(); ++i) {
     const fs::path dir = shards[i];
-    for (hs::CaseResult& c : parts[i].cases) {
-      const fs::path from = dir / "cases" / c.id;
-      if (!fs::equivalent(dir, fs::path(out)) && fs::is_directory(fs::symlink_status(from))) {
-        copy_case(from, fs::path(out) / "cases" / c.id);
-      }
+    for (std::size_t k = 0; k < parts[i].cases.size(); ++k) {
+      hs::CaseResult& c = parts[i].cases[k];
+      if (has_folder[i][k]) copy_case(dir / "cases" / c.id, fs::path(out) / "cases" / c.id);
       merged.cases.push_back(std::move(c));
     }
   }

@@ -93,6 +93,9 @@ int main(int argc, char** argv) {
   // A write over the file size limit (ulimit -f) fails with EFBIG and a message naming the file,
   // instead of the signal ending the process without a word.
   std::signal(SIGXFSZ, SIG_IGN);
+  // A reader that has gone (`aosuite bless | head -1`) must not end a bless half way through
+  // its cases: writes to the pipe fail with EPIPE instead, and check and bless go on.
+  std::signal(SIGPIPE, SIG_IGN);
   if (argc > 1) {
     if (const LibraryCommand* c = library_command(argv[1]))
       return run_library_command(*c, argc, argv);

@@ -167,6 +167,26 @@ TEST_F(HarnessCli, ShardsMergeIntoOneReport) {
   EXPECT_EQ(part["shard"], "partial, missing 1/2");
   EXPECT_EQ(part["cases"].size(), a["cases"].size());
   EXPECT_NE(read_text(dir_ / "p" / "index.html").find("partial, missing 1/2"), std::string::npos);
+  // The first shard missing is named as well as the last.
+  p = aosuite("report merge --out q b");
+  EXPECT_EQ(p.rc, 2) << p.out << p.err;
+  EXPECT_NE(p.err.find("shard 0/2 of the run is missing"), std::string::npos) << p.err;
+  // --out naming a shard would overwrite it: refused.
+  p = aosuite("report merge --out ./a a b");
+  EXPECT_EQ(p.rc, 2) << p.out << p.err;
+  EXPECT_NE(p.err.find("--out ./a is the shard a"), std::string::npos) << p.err;
+  // A shard's image that is a link is refused by name, and nothing is merged.
+  const fs::path linked =
+      dir_ / "b" / "cases" / b["cases"][0]["id"].get<std::string>() / "with_ao.png";
+  ASSERT_TRUE(fs::exists(linked));
+  fs::remove(linked);
+  fs::create_symlink(dir_ / "suites" / "t.toml", linked);
+  p = aosuite("report merge --out q a b");
+  EXPECT_EQ(p.rc, 2) << p.out << p.err;
+  EXPECT_NE(p.err.find("with_ao.png: a link or special file in a shard's report"),
+            std::string::npos)
+      << p.err;
+  EXPECT_FALSE(fs::exists(dir_ / "q"));
 }
 
 TEST_F(HarnessCli, BadInputIsAClearErrorAndLosesNothing) {

@@ -473,6 +473,17 @@ TEST_F(ImageCases, FolderModeFollowsNoLinkAndSaysWhatItSkipped) {
         "actual/notes.txt (not an image file)"}) {
     EXPECT_NE(r.out.find(said), std::string::npos) << said << "\n" << r.out;
   }
+  // An actual image that is a link is not a deleted one: its expected image stays, and says so.
+  fs::copy_file(red, dir_ / "expected" / "out.png");
+  r = aosuite("check --actual actual --expected expected");
+  EXPECT_EQ(r.rc, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find(" 0 deleted"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("expected/out.png (its actual file was skipped; left as it is)"),
+            std::string::npos)
+      << r.out;
+  aosuite("bless --actual actual --expected expected");
+  EXPECT_TRUE(fs::exists(dir_ / "expected" / "out.png"));
+  fs::remove(dir_ / "expected" / "out.png");
   // A golden that is a link, and one under a linked folder: ERROR, and bless writes nothing.
   fs::copy_file(red, dir_ / "actual" / "b.png");
   fs::create_symlink("../outside/red.png", dir_ / "expected" / "b.png");
@@ -560,6 +571,26 @@ outputs = ["x.png"]
   r = aosuite("check s/t.toml");
   EXPECT_EQ(r.rc, 2) << r.out << r.err;
   EXPECT_NE(r.out.find("chart.png: is a device, not a regular file"), std::string::npos) << r.out;
+}
+
+// A reader that goes away (`| head -1`) does not stop a bless half way: every case is
+// blessed and the exit status is bless's own, not SIGPIPE's.
+TEST_F(ImageCases, BlessIntoAClosedPipeBlessesEveryCase) {
+  std::ofstream suite(dir_ / "s" / "many.toml");
+  for (int i = 0; i < 12; ++i) {
+    suite << "[[case]]\nname = \"c" << i << "\"\ncommand = [\"sh\", \"-c\", \"sleep 0.05; cp "
+          << "{suite_dir}/red.png {out}/x.png\"]\noutputs = [\"x.png\"]\ninputs = []\n";
+  }
+  suite.close();
+  const test::Outcome r =
+      test::run_shell("cd " + dir_.path().string() + " && { " + aosuite_bin() +
+                          " bless s/many.toml --jobs 1; echo $? > rc.txt; } | head -1",
+                      dir_.path());
+  EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << r.out;
+  EXPECT_EQ(read_text(dir_ / "rc.txt"), "0\n") << r.err;
+  for (int i = 0; i < 12; ++i) {
+    EXPECT_TRUE(fs::exists(dir_ / "s" / "goldens" / "many" / fmt::format("c{}", i) / "x.png")) << i;
+  }
 }
 
 // A page that cannot be written (a full disk; here a file size limit) leaves no page, never
