@@ -198,6 +198,15 @@ void kill_tree(pid_t command, int& command_status) {
   }
   int ignored = 0;
   kill_tree(command, ignored);  // what it left running
+  if (WIFSIGNALED(status)) {
+    // Ended by a signal: so is the reaper, by the same one (without a core file), so that aosuite
+    // tells SIGXFSZ from an exit status of 153.
+    const int sig = WTERMSIG(status);
+    ::prctl(PR_SET_DUMPABLE, 0);
+    ::signal(sig, SIG_DFL);
+    ::sigprocmask(SIG_SETMASK, &none, nullptr);
+    ::kill(::getpid(), sig);
+  }
   ::_exit(WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status));
 }
 
@@ -266,6 +275,7 @@ CommandOutcome run_command(const std::vector<std::string>& argv, const fs::path&
     throw std::runtime_error("cannot run '" + argv[0] + "': " + std::strerror(exec_errno));
   }
   o.exit_status = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  if (WIFSIGNALED(status) && !o.timed_out) o.signal = WTERMSIG(status);
   o.stderr_tail = tail_of(stderr_file, 4096);
   keep_tail(stdout_file);
   keep_tail(stderr_file);

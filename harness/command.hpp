@@ -9,6 +9,7 @@ namespace aosuite::harness {
 
 struct CommandOutcome {
   int exit_status = -1;  // the exit status; 128 + N when killed by signal N
+  int signal = 0;        // N when killed by signal N (else 0, an exit status of 153 included)
   bool timed_out = false;
   std::string stderr_tail;  // the last 4 KiB of what it wrote to stderr
 };

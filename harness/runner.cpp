@@ -1,6 +1,7 @@
 #include "harness/runner.hpp"
 
 #include <fmt/format.h>
+#include <string.h>  // sigabbrev_np, sigdescr_np
 
 #include <algorithm>
 #include <atomic>
@@ -227,6 +228,13 @@ void produce_images(const Case& c, const fs::path& case_dir, CaseResult& r, Rend
     if (run.timed_out) {
       throw std::runtime_error(
           fmt::format("command timed out after {} s and was killed", src.timeout_seconds));
+    }
+    if (run.signal != 0) {
+      const char* name = ::sigabbrev_np(run.signal);
+      const char* what = ::sigdescr_np(run.signal);
+      throw std::runtime_error(fmt::format("command was killed by SIG{} ({}){}",
+                                           name ? std::string(name) : std::to_string(run.signal),
+                                           what ? what : "", said.empty() ? "" : ": " + said));
     }
     if (run.exit_status != 0) {
       throw std::runtime_error(fmt::format("command exited with status {}{}", run.exit_status,

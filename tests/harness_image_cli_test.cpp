@@ -281,6 +281,24 @@ TEST_F(ImageCases, CommandFailuresAreErrorsWithExitStatusAndStderr) {
             std::string::npos);
   EXPECT_EQ(aosuite("bless s/t.toml").rc, 2);
   EXPECT_FALSE(fs::exists(dir_ / "s" / "goldens" / "t" / "chart" / "chart.png"));
+  // A signal is named as one, not read as an exit status (153 = 128 + SIGXFSZ).
+  std::ofstream(dir_ / "s" / "sig.toml") << R"(
+[[case]]
+name = "signalled"
+command = ["sh", "-c", "kill -XFSZ $$"]
+outputs = ["x.png"]
+
+[[case]]
+name = "exited"
+command = ["sh", "-c", "exit 153"]
+outputs = ["x.png"]
+)";
+  r = aosuite("check s/sig.toml");
+  EXPECT_EQ(r.rc, 2) << r.out << r.err;
+  EXPECT_NE(r.out.find("command was killed by SIGXFSZ (File size limit exceeded)"),
+            std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("command exited with status 153"), std::string::npos) << r.out;
   // The report's ERROR is not something to approve; a missing report or another suite's is a
   // one-line error naming the file.
   r = aosuite("bless s/t.toml --from-report --filter chart");
