@@ -4,6 +4,7 @@
 #include <fcntl.h>
 #include <signal.h>
 #include <sys/prctl.h>
+#include <sys/stat.h>
 #include <sys/syscall.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -51,6 +52,18 @@ void keep_tail(const fs::path& file) {
   const std::string text = "[aosuite: " + std::to_string(size) + " bytes written; the last " +
                            std::to_string(kKeptOutput) + " kept]\n" + tail;
   write_file_atomic(file, {reinterpret_cast<const unsigned char*>(text.data()), text.size()});
+}
+
+// Frees the disk blocks of all but the last kKeptOutput bytes of an output file the command is
+// still writing (a hole punched before them; its size, the count written, stays): a command
+// that writes gigabytes to stdout holds a few MiB of disk in the report folder, not gigabytes,
+// while it runs. Where the file system has no holes, nothing is freed until keep_tail.
+void free_all_but_tail(int fd) {
+  constexpr off_t kPunchAbove = 4 << 20;
+  struct stat st {};
+  if (::fstat(fd, &st) != 0 || static_cast<off_t>(st.st_blocks) * 512 <= kPunchAbove) return;
+  const off_t end = (st.st_size - static_cast<off_t>(kKeptOutput) - 1) & ~off_t{4095};
+  if (end > 0) (void)::fallocate(fd, FALLOC_FL_PUNCH_HOLE | FALLOC_FL_KEEP_SIZE, 0, end);
 }
 
 // argv[0] as execve needs it: a path with '/' as given, else the first executable in PATH.
@@ -241,7 +254,11 @@ CommandOutcome run_command(const std::vector<std::string>& argv, const fs::path&
   const pid_t reaper = ::fork();
   if (reaper == 0)
     reap(parent, file.c_str(), args.data(), envp.data(), dir.c_str(), in, out, err, exec_pipe[1]);
-  for (int fd : {in, out, err, exec_pipe[1]}) ::close(fd);
+  for (int fd : {in, exec_pipe[1]}) ::close(fd);
+  struct Close {
+    int a, b;
+    ~Close() { ::close(a), ::close(b); }
+  } outputs{out, err};  // kept here to free their old blocks while the command writes
   if (reaper < 0) {
     ::close(exec_pipe[0]);
     throw std::runtime_error("cannot run '" + argv[0] + "': fork failed");
@@ -270,6 +287,8 @@ CommandOutcome run_command(const std::vector<std::string>& argv, const fs::path&
     }
     std::this_thread::sleep_for(pause);
     pause = std::min(pause * 2, std::chrono::microseconds(20000));
+    free_all_but_tail(out);
+    free_all_but_tail(err);
   }
   if (got == sizeof exec_errno) {
     throw std::runtime_error("cannot run '" + argv[0] + "': " + std::strerror(exec_errno));

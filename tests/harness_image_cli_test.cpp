@@ -958,6 +958,32 @@ outputs = ["x.png"]
   }
 }
 
+// A command that floods stdout holds little disk while it runs: all but the kept tail is freed
+// as it writes, not once it ends.
+TEST_F(ImageCases, ACommandsFloodOfOutputIsFreedWhileItRuns) {
+  std::ofstream(dir_ / "s" / "flood.toml") << R"(
+[[case]]
+name = "flood"
+command = ["sh", "-c", "head -c 300000000 /dev/zero; touch {suite_dir}/wrote; while [ ! -e {suite_dir}/seen ]; do sleep 0.02; done; cp {suite_dir}/red.png {out}/x.png"]
+outputs = ["x.png"]
+timeout = 30
+)";
+  test::run_shell("cd " + dir_.path().string() + " && (" + aosuite_bin() +
+                      " check s/flood.toml >bg.out 2>&1 &) && while [ ! -e s/wrote ]; do sleep "
+                      "0.02; done; sleep 0.5",
+                  dir_.path());
+  struct stat st {};
+  const fs::path out = dir_ / "reports" / "flood" / "cases" / "flood" / "stdout.txt";
+  ASSERT_EQ(::stat(out.c_str(), &st), 0);
+  EXPECT_EQ(st.st_size, 300000000);                       // every byte counted
+  EXPECT_LT(st.st_blocks * 512, std::int64_t{16} << 20);  // but not kept on disk
+  std::ofstream(dir_ / "s" / "seen") << "";
+  for (int i = 0; i < 500 && read_text(dir_ / "bg.out").find("1 case:") == std::string::npos; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  EXPECT_TRUE(
+      read_text(out).starts_with("[aosuite: 300000000 bytes written; the last 65536 kept]"));
+}
+
 // Case fields go into the argv as they are; inside `sh -c` they are shell-quoted, so a field
 // is never shell syntax.
 TEST_F(ImageCases, PlaceholdersAreArgumentsNeverShellText) {
