@@ -169,6 +169,32 @@ TEST_F(TolerancesSuggest, TwoSidedBudgetsKeepBothEnds) {
   EXPECT_EQ(toml.find("max_channel_delta"), std::string::npos) << toml;
 }
 
+// A margin widens a minimum downward, as it widens a maximum upward: a two-sided budget's lower
+// end and a metric's min_ limit both drop below the least any run measured.
+TEST_F(TolerancesSuggest, AMarginLowersAMinimum) {
+  write_suite(
+      "mode = \"nothing\"\nmax_mismatch_percent = 50\nchannel_delta = [1, 64]\n"
+      "ssim = { min_mean = 0.1 }\n");
+  two_runs("^chart$");
+  ASSERT_NE(aosuite("tolerances suggest s/t.toml --report reports/a --report reports/b "
+                    "--margin 50 --out m.toml")
+                .rc,
+            2);
+  const std::string toml = test::read_text(dir_ / "m.toml");
+  EXPECT_NE(toml.find("channel_delta = [3, 11]  # now [1, 64]\n"), std::string::npos) << toml;
+  const auto ssim_mean = [&](const std::string& report) {
+    const nlohmann::json r =
+        nlohmann::json::parse(test::read_text(dir_ / "reports" / report / "results.json"));
+    return r.at("cases").at(0).at("images").at(0).at("metrics").at("ssim").at("mean").get<double>();
+  };
+  const double least = std::min(ssim_mean("a"), ssim_mean("b"));
+  const std::size_t at = toml.find("min_mean = ");
+  ASSERT_NE(at, std::string::npos) << toml;
+  const double proposed = std::stod(toml.substr(at + 11));
+  EXPECT_LT(proposed, least) << toml;
+  EXPECT_NEAR(proposed, least * 0.5, 1e-3) << toml;
+}
+
 // A golden blessed since the runs makes their numbers stale: nothing is suggested from them.
 TEST_F(TolerancesSuggest, RunsAgainstAnOlderGoldenAreNotUsed) {
   two_runs();
