@@ -217,6 +217,15 @@ TEST_F(TuneRun, NeverWorseThanTheDefaultsAndValidatedOnEachSceneLeftOut) {
   }
   EXPECT_GT(r.renders, 0);
   EXPECT_GT(r.tuned_ms, 0);
+  // A fold's errors are its held-out scene's: the defaults' error on "corner" alone is the first
+  // fold's (measured on its training scene instead, it would be the spheres').
+  aosuite::ao::TuneSettings corner = s_;
+  corner.scenes = {"corner"};
+  corner.state = dir_ / "corner.json";
+  const aosuite::ao::TuneResult alone = aosuite::ao::run_tune(corner);
+  const auto mean = [](const std::vector<double>& v) { return (v.at(0) + v.at(1)) / 2; };
+  EXPECT_NEAR(mean(r.folds[0].default_error), alone.default_error, 1e-9);
+  EXPECT_GT(std::abs(mean(r.folds[1].default_error) - alone.default_error), 1e-6);
 
   // The same settings again: every measurement comes from the state, the answer is the same.
   const aosuite::ao::TuneResult again = aosuite::ao::run_tune(s_);
