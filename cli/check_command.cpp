@@ -48,11 +48,13 @@ struct HarnessArgs {
 };
 
 void add_selection_options(CLI::App* cmd, HarnessArgs& a) {
-  cmd->add_option("suite", a.suite, "suite file, e.g. suites/default.toml");
+  cmd->add_option("suite", a.suite, "suite file, e.g. suites/default.toml")->option_text("SUITE");
   cmd->add_option("--actual", a.actual,
-                  "folder mode, without a suite: the new images (image files, by relative path)");
+                  "folder mode, without a suite: the new images (image files, by relative path)")
+      ->option_text("DIR");
   cmd->add_option("--expected", a.expected,
-                  "folder mode: the accepted images, paired with --actual by relative path");
+                  "folder mode: the accepted images, paired with --actual by relative path")
+      ->option_text("DIR");
   cmd->add_option("--max-mismatch", a.max_mismatch,
                   "folder mode: allowed Resemble mismatch % per image (default 0); every other "
                   "limit stays")
@@ -77,22 +79,29 @@ void add_selection_options(CLI::App* cmd, HarnessArgs& a) {
       ->option_text("METRIC.KEY=VALUE");
   cmd->add_option("--warn-max-mismatch", a.warn_mismatch,
                   "folder mode: a passing image above this Resemble mismatch % is a WARN (exit 0)")
+      ->option_text("0..100")
       ->check(CLI::Range(0.0, 100.0));
   cmd->add_option("--warn-gate", a.warn_gates,
                   "folder mode: METRIC.KEY=VALUE, a gate a passing image may break with a WARN "
-                  "(exit 0), e.g. flip.max_mean=0.005; repeatable");
+                  "(exit 0), e.g. flip.max_mean=0.005; repeatable")
+      ->option_text("METRIC.KEY=VALUE");
   cmd->add_option("--filter", a.filter,
                   "only cases whose id contains a match of this regular expression (anchor it, "
-                  "'^id$', for exactly one case)");
+                  "'^id$', for exactly one case)")
+      ->option_text("REGEX");
   cmd->add_option("--goldens", a.goldens,
                   "goldens folder (default: the suite's goldens key, else goldens/<suite name> "
-                  "in the current directory)");
+                  "in the current directory)")
+      ->option_text("DIR");
   cmd->add_option("--shard", a.shard,
                   "i/n: run every n-th case from the i-th (default: GTEST_SHARD_INDEX / "
-                  "GTEST_TOTAL_SHARDS when set)");
-  cmd->add_option("--jobs,-j", a.jobs, "cases rendered at once, each with its own GL context")
-      ->capture_default_str();
-  cmd->add_option("--report", a.report, "report folder (default: reports/<suite name>)");
+                  "GTEST_TOTAL_SHARDS when set)")
+      ->option_text("I/N");
+  cmd->add_option("--jobs,-j", a.jobs,
+                  "cases run at once (default 1); a scene case renders in a GL context of its own")
+      ->option_text("N");
+  cmd->add_option("--report", a.report, "report folder (default: reports/<suite name>)")
+      ->option_text("DIR");
   cmd->add_flag("--no-reuse", a.no_reuse, "re-render and re-judge even unchanged cases");
   cmd->add_flag("--wait", a.wait,
                 "wait for another aosuite that is writing the same report or goldens folder "
@@ -544,14 +553,16 @@ void add_check_command(CLI::App& app, int& rc) {
   auto a = std::make_shared<HarnessArgs>();
   CLI::App* cmd = app.add_subcommand(
       "check",
-      "Render a suite's cases and compare each with its golden. Exit status: 0 all passed, "
-      "1 a case failed or has no golden yet, 2 a case could not be rendered or judged.");
+      "Gate a suite's cases (renders, command outputs, files) or a folder's images against "
+      "their goldens, and write the report. Exit status: 0 all passed, 1 a case failed or has "
+      "no golden yet, 2 a case could not be made or judged.");
   add_selection_options(cmd, *a);
-  cmd->add_option("--junit", a->junit, "also write JUnit XML here");
+  cmd->add_option("--junit", a->junit, "also write JUnit XML here")->option_text("FILE");
   cmd->add_flag("--diff-all", a->diff_all, "write diff images for passing cases too");
   cmd->add_flag("--list", a->list, "print the selected case ids and stop");
   cmd->add_option("--retries", a->retries,
                   "run a failing case up to N more times; one that then passes is FLAKY")
+      ->option_text("N")
       ->check(CLI::Range(0, 100));
   cmd->add_flag("--json", a->json,
                 "print one JSON object per case as it finishes, then a summary object");
@@ -567,7 +578,8 @@ void add_bless_command(CLI::App& app, int& rc) {
   add_selection_options(cmd, *a);
   cmd->add_flag("--platform", a->platform,
                 "write goldens for this GL platform only (goldens/<suite>/<case>/<platform>/)");
-  cmd->add_option("--variant", a->tag, "add an accepted variant <image>~<tag>.png instead");
+  cmd->add_option("--variant", a->tag, "add an accepted variant <image>~<tag>.png instead")
+      ->option_text("TAG");
   cmd->add_flag("--force", a->force, "rewrite the goldens of cases that pass too");
   cmd->add_flag("--from-report", a->from_report,
                 "accept the last report's images (--report DIR) instead of rendering");
@@ -584,9 +596,11 @@ void add_report_command(CLI::App& app, int& rc) {
   auto out = std::make_shared<std::string>();
   auto junit = std::make_shared<std::string>();
   auto shards = std::make_shared<std::vector<std::string>>();
-  merge->add_option("--out", *out, "merged report folder")->required();
-  merge->add_option("--junit", *junit, "also write JUnit XML here");
-  merge->add_option("shards", *shards, "report folders of the shards")->required();
+  merge->add_option("--out", *out, "merged report folder")->required()->option_text("DIR");
+  merge->add_option("--junit", *junit, "also write JUnit XML here")->option_text("FILE");
+  merge->add_option("shards", *shards, "report folders of the shards")
+      ->required()
+      ->option_text("DIR...");
   auto partial = std::make_shared<bool>(false), wait = std::make_shared<bool>(false);
   merge->add_flag("--partial", *partial,
                   "merge even when shards of the run are missing; the report says which");

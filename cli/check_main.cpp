@@ -45,13 +45,15 @@ void add_gl_options(CLI::App& app) {
            "--gl", [](const std::string& v) { setenv("AOSUITE_GL", v.c_str(), 1); },
            "scene cases: OpenGL backend auto (EGL, else OSMesa), egl, osmesa; default "
            "$AOSUITE_GL or auto")
-        ->check(CLI::IsMember({"auto", "egl", "osmesa"}));
+        ->check(CLI::IsMember({"auto", "egl", "osmesa"}))
+        ->option_text("BACKEND");
     cmd->add_option_function<int>(
            "--gl-device",
            [](int index) { setenv("AOSUITE_GL_DEVICE", std::to_string(index).c_str(), 1); },
            "scene cases: EGL device index (aosuite gl-info lists them); default "
            "$AOSUITE_GL_DEVICE or the first GPU, else Mesa's software device")
-        ->check(CLI::Range(0, 1024));
+        ->check(CLI::Range(0, 1024))
+        ->option_text("INDEX");
   }
 }
 

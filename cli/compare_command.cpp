@@ -348,35 +348,47 @@ void add_compare_command(CLI::App& app, int& rc) {
       "Exit status: 0 same under the one tolerance (docs/compare.md: mismatch <= --threshold,\n"
       "channel delta <= 8, mean shift <= 0.5, mean delta <= 0.25 levels, same size and kind,\n"
       "every --gate), 1 different, 2 error. --metric alone measures without gating.");
-  cmd->add_option("a", args->a, "first image (PNG, EXR, JPEG, TIFF, WebP, HDR, TGA, BMP)");
-  cmd->add_option("b", args->b, "second image");
+  cmd->add_option("a", args->a, "first image (PNG, EXR, JPEG, TIFF, WebP, HDR, TGA, BMP)")
+      ->option_text("FILE");
+  cmd->add_option("b", args->b, "second image")->option_text("FILE");
   cmd->add_option("--batch", args->batch,
                   "compare the pairs listed in FILE (- for stdin), one JSON line out per pair; "
-                  "the format of resemble-oracle --batch");
-  cmd->add_option("--mode", args->mode, "default|nothing|less|colors|antialiasing|alpha")
-      ->capture_default_str();
+                  "the format of resemble-oracle --batch")
+      ->option_text("FILE");
+  cmd->add_option("--mode", args->mode,
+                  "Resemble's ignore mode: nothing|less|colors|antialiasing|alpha; without one, "
+                  "Resemble's own defaults (the tolerances of less)")
+      ->option_text("MODE");
   cmd->add_option("--tolerance", args->tolerance,
-                  R"(JSON, e.g. '{"red":4,"minBrightness":4}'; like Resemble, only with a --mode)");
+                  R"(JSON, e.g. '{"red":4,"minBrightness":4}'; like Resemble, only with a --mode)")
+      ->option_text("JSON");
   cmd->add_option("--error-type", args->error_type,
-                  "flat|movement|flatDifferenceIntensity|movementDifferenceIntensity|diffOnly")
-      ->capture_default_str();
-  cmd->add_option("--error-color", args->error_color, "R,G,B[,A] (default 255,0,255,255)");
-  cmd->add_option("--transparency", args->transparency, "alpha factor of non-error pixels")
-      ->capture_default_str();
-  cmd->add_option("--bounding-box", args->bounding_boxes,
-                  "L,T,R,B: compare only inside (repeatable)");
-  cmd->add_option("--ignored-box", args->ignored_boxes,
-                  "L,T,R,B: do not compare inside (repeatable)");
+                  "flat|movement|flatDifferenceIntensity|movementDifferenceIntensity|diffOnly "
+                  "(default flat)")
+      ->option_text("TYPE");
+  cmd->add_option("--error-color", args->error_color, "the diff's colour (default 255,0,255,255)")
+      ->option_text("R,G,B[,A]");
+  cmd->add_option("--transparency", args->transparency,
+                  "alpha factor of non-error pixels in the diff (default 1)")
+      ->option_text("FACTOR");
+  cmd->add_option("--bounding-box", args->bounding_boxes, "compare only inside (repeatable)")
+      ->option_text("L,T,R,B");
+  cmd->add_option("--ignored-box", args->ignored_boxes, "do not compare inside (repeatable)")
+      ->option_text("L,T,R,B");
   cmd->add_option("--ignore-areas-colored-with", args->ignore_color,
-                  "R,G,B: do not compare where the second image has this colour");
+                  "do not compare where the second image has this colour")
+      ->option_text("R,G,B");
   cmd->add_option("--large-image-threshold", args->large_image_threshold,
-                  "sample every 6th row/column above this size in antialiasing mode; 0 = never")
-      ->capture_default_str();
+                  "sample every 6th row/column above this many pixels a side in antialiasing "
+                  "mode (default 1200); 0 = never")
+      ->option_text("PIXELS");
   cmd->add_option("--return-early-threshold", args->return_early,
-                  "stop once the mismatch % exceeds this (no diff image)");
+                  "stop once the mismatch % exceeds this (no diff image)")
+      ->option_text("0..100");
   cmd->add_option("--canvas-alpha", args->canvas_alpha,
-                  "what a canvas does to translucent pixels: none|chromium|node-canvas")
-      ->capture_default_str();
+                  "what a canvas does to translucent pixels: none|chromium|node-canvas (default "
+                  "none)")
+      ->option_text("CANVAS");
   cmd->add_option("--metric", args->metrics,
                   fmt::format("measure these beside Resemble's comparison: {} (comma-separated "
                               "or repeated)",
@@ -392,19 +404,21 @@ void add_compare_command(CLI::App& app, int& rc) {
                   "max_channel_delta=255, max_mean_shift=1, shift_radius=1, "
                   "allow_kind_change=true (repeatable)")
       ->option_text("KEY=VALUE");
-  cmd->add_option("--heatmap", args->heatmap, "write FLIP's error map (magma) as PNG");
+  cmd->add_option("--heatmap", args->heatmap, "write FLIP's error map (magma) as PNG")
+      ->option_text("FILE");
   cmd->add_option("--flip-pooling", args->flip_pooling,
                   "exact (double sums) or tool: FLIP's mean and weighted percentiles summed in "
                   "float as NVlabs' FLIP tool does, printed to its 6 decimals")
       ->check(CLI::IsMember({"exact", "tool"}))
-      ->capture_default_str();
-  cmd->add_option("--diff", args->diff, "write the diff image (Resemble's raw buffer) as PNG");
+      ->option_text("exact|tool (default exact)");
+  cmd->add_option("--diff", args->diff, "write the diff image (Resemble's raw buffer) as PNG")
+      ->option_text("FILE");
   cmd->add_option("--threshold", args->threshold,
                   "largest Resemble mismatch % still judged the same (max_mismatch_percent)")
       ->option_text("0..100 (default 0)");
   cmd->add_option("--memory-limit", args->memory_limit,
-                  "MiB the comparison may hold: files, decoded images, diff image")
-      ->capture_default_str();
+                  "MiB the comparison may hold: files, decoded images, diff image (default 1024)")
+      ->option_text("MIB");
   cmd->add_flag("--json", args->json, "print Resemble's result object as one JSON line");
   cmd->callback([args, &rc] {
     if (args->batch.empty() && (args->a.empty() || args->b.empty())) {

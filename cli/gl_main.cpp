@@ -16,12 +16,14 @@ void add_gl_options(CLI::App& app) {
     cmd->add_option_function<std::string>(
            "--gl", [](const std::string& name) { rd::set_gl_backend(rd::parse_gl_backend(name)); },
            "OpenGL backend: auto (EGL, else OSMesa), egl, osmesa; default $AOSUITE_GL or auto")
-        ->check(CLI::IsMember({"auto", "egl", "osmesa"}));
+        ->check(CLI::IsMember({"auto", "egl", "osmesa"}))
+        ->option_text("BACKEND");
     cmd->add_option_function<int>(
            "--gl-device", [](int index) { rd::set_gl_device(index); },
            "EGL device index (aosuite gl-info lists them); default $AOSUITE_GL_DEVICE or the "
            "first GPU, else Mesa's software device")
-        ->check(CLI::Range(0, 1024));
+        ->check(CLI::Range(0, 1024))
+        ->option_text("INDEX");
   }
 }
 

@@ -104,18 +104,24 @@ void add_tolerances_command(CLI::App& app, int& rc) {
       "of check), written beside the goldens for review. Exit status: 0 every case suggested, "
       "1 some not (listed, with why), 2 none or bad input (nothing written).");
   auto a = std::make_shared<SuggestArgs>();
-  suggest->add_option("suite", a->suite,
-                      "suite file the reports are runs of; none for folder-mode reports (the "
-                      "flags of one tolerance for every image are printed)");
+  suggest
+      ->add_option("suite", a->suite,
+                   "suite file the reports are runs of; none for folder-mode reports (the "
+                   "flags of one tolerance for every image are printed)")
+      ->option_text("SUITE");
   suggest->add_option("--report", a->reports, "report folder of a check run (repeat, 2 or more)")
-      ->required();
-  suggest->add_option("--goldens", a->goldens, "goldens folder, if check was given --goldens");
-  suggest->add_option("--out", a->out,
-                      "file to write (default: <goldens>/tolerances.suggested.toml)");
+      ->required()
+      ->option_text("DIR");
+  suggest->add_option("--goldens", a->goldens, "goldens folder, if check was given --goldens")
+      ->option_text("DIR");
+  suggest
+      ->add_option("--out", a->out, "file to write (default: <goldens>/tolerances.suggested.toml)")
+      ->option_text("FILE");
   suggest
       ->add_option("--margin", a->margin,
                    "headroom in % of each measured value (default 0: the tightest)")
-      ->check(CLI::Range(0.0, 1000.0));
+      ->check(CLI::Range(0.0, 1000.0))
+      ->option_text("PERCENT");
   guarded(suggest, rc, "tolerances suggest", [a] { return run_suggest(*a); });
 }
 

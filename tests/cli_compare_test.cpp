@@ -413,5 +413,21 @@ TEST_F(CliCompare, BatchReadsOracleFormat) {
   EXPECT_TRUE(nlohmann::json::parse(l3).contains("error"));
 }
 
+// Every option says what it takes (FILE, DIR, MODE, ...), never CLI11's bare TEXT, and no
+// default is one the docs do not name; check says what it does for every kind of case.
+TEST(CliHelp, OptionsNameWhatTheyTake) {
+  for (const char* cmd : {"compare", "check", "bless", "report merge", "tolerances suggest"}) {
+    const test::Outcome r = test::run_shell(std::string(AOSUITE_BIN) + " " + cmd + " --help",
+                                            std::filesystem::temp_directory_path());
+    EXPECT_EQ(r.rc, 0) << cmd;
+    EXPECT_EQ(r.out.find(" TEXT"), std::string::npos) << cmd << "\n" << r.out;
+    EXPECT_EQ(r.out.find("=default"), std::string::npos) << cmd << "\n" << r.out;
+  }
+  const test::Outcome check = test::run_shell(std::string(AOSUITE_BIN) + " check --help",
+                                              std::filesystem::temp_directory_path());
+  EXPECT_EQ(check.out.find("Render a suite"), std::string::npos) << check.out;
+  EXPECT_NE(check.out.find("-j,--jobs N"), std::string::npos) << check.out;
+}
+
 }  // namespace
 }  // namespace aosuite
