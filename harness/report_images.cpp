@@ -184,16 +184,22 @@ std::string thumbnail(const fs::path& dir, const std::string& rel) {
   if (!inside(dir, rel)) return "";
   const fs::path file = dir / rel;
   try {
-    const std::vector<unsigned char> bytes = read_file(file);
-    const ImageSize size = check_png(bytes, file.string());
-    if (size.width <= kThumbW && size.height <= kThumbH) return rel;
-    const std::string name = "thumb_" + file.filename().string();
+    const std::vector<unsigned char> bytes = read_file(file, kMaxFileBytes);
+    // A PNG small enough is its own thumbnail; any other image (JPEG, WebP, TIFF, ...) gets a PNG
+    // one, which every browser shows.
+    const bool is_png_file = is_png(bytes);
+    if (is_png_file) {
+      const ImageSize size = check_png(bytes, file.string());
+      if (size.width <= kThumbW && size.height <= kThumbH) return rel;
+    }
+    const std::string name = "thumb_" + file.filename().string() + (is_png_file ? "" : ".png");
     const fs::path thumb = file.parent_path() / name;
     std::error_code ec;
     if (fs::exists(thumb, ec) && fs::last_write_time(thumb, ec) >= fs::last_write_time(file, ec)) {
       return fs::path(rel).parent_path().string() + "/" + name;
     }
-    const RgbaImage img = decode_png(bytes, file.string());
+    const RgbaImage img = is_png_file ? decode_png(bytes, file.string())
+                                      : decode_rgba8(bytes, file.string(), kMaxFileBytes);
     const int w = img.width(), h = img.height();
     const int f = std::max((w + kThumbW - 1) / kThumbW, (h + kThumbH - 1) / kThumbH);
     RgbaImage small((w + f - 1) / f, (h + f - 1) / f);

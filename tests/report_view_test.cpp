@@ -72,6 +72,20 @@ class ReportView : public ::testing::Test {
   test::TempDir dir_;
 };
 
+// A row's thumbnail for an image no browser may show as it is (WebP here; JPEG, TIFF alike):
+// a PNG made from its pixels, not an empty cell.
+TEST_F(ReportView, EveryImageTypeHasAThumbnail) {
+  const fs::path corpus = fs::path(AOSUITE_SOURCE_DIR) / "tests" / "data" / "corpus" / "benign";
+  for (const char* side : {"actual", "expected"})
+    fs::copy_file(corpus / side / "webp_lossless.webp", dir_ / side / "photo.webp");
+  ASSERT_EQ(check().rc, 1);  // chart.png and ao.exr changed
+  const std::string thumb = by_id(data(), "photo.webp").at("thumb");
+  EXPECT_EQ(thumb, "cases/photo.webp/thumb_image.webp.png");
+  const cv::Mat png = read_png_rgba8(dir_ / "rep" / thumb);
+  EXPECT_GT(png.cols, 0);
+  EXPECT_LE(png.cols, 160);
+}
+
 TEST_F(ReportView, ExrImagesAreShownThroughPngPreviews) {
   const test::Outcome r = check();
   ASSERT_EQ(r.rc, 1) << r.out << r.err;
