@@ -240,7 +240,7 @@ void print_stale(const hs::RunResults& run) {
 int finish(const hs::RunResults& run, const fs::path& report_dir, const std::string& junit,
            const Output& out) {
   hs::write_html_report(run, report_dir, {.single_file = out.single_file});
-  if (!junit.empty()) hs::write_junit(run, junit);
+  if (!junit.empty()) hs::write_junit(run, junit, report_dir);
   const hs::Counts n = hs::count(run);
   std::vector<std::string> to_accept;
   for (const hs::CaseResult& c : run.cases) {

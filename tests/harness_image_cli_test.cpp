@@ -234,7 +234,20 @@ TEST_F(ImageCases, ACommandsImagesPassFailAndAreApprovedFromTheReport) {
   EXPECT_EQ(results["cases"][0]["exit_status"], 0);
   EXPECT_NE(results["cases"][0]["command_stderr"].get<std::string>().find("drew green"),
             std::string::npos);
-  EXPECT_NE(read_text(dir_ / "junit.xml").find("failures=\"1\""), std::string::npos);
+  const std::string junit = read_text(dir_ / "junit.xml");
+  EXPECT_NE(junit.find("failures=\"1\""), std::string::npos) << junit;
+  // JUnit links the report's panel and the images, and accepts what the report shows.
+  const std::string report = fs::canonical(dir_ / "reports" / "t").string();
+  EXPECT_NE(junit.find("<system-out>report: " + report + "/index.html#case=chart\n"),
+            std::string::npos)
+      << junit;
+  EXPECT_NE(junit.find("[[ATTACHMENT|" + report + "/cases/chart/diff_chart.png]]"),
+            std::string::npos)
+      << junit;
+  EXPECT_NE(junit.find("to accept what the report shows: aosuite bless s/t.toml --from-report "
+                       "--report reports/t --filter &#39;^chart$&#39;"),
+            std::string::npos)
+      << junit;
   EXPECT_NE(read_text(dir_ / "reports" / "t" / "index.html").find("chart"), std::string::npos);
 
   // Approve from the report: the reviewed image, not a new run (the command now fails).
