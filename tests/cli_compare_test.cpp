@@ -343,8 +343,16 @@ TEST_F(CliCompare, FifoWithoutWriterIsAnErrorNotAHang) {
 
 // A safety net against a runaway allocation. ASan reserves terabytes of address space for its
 // shadow memory, so under it the limit would stop the process before it starts; the RSS
-// bounds below still hold there.
+// bounds below still hold there. GCC says ASan is on with __SANITIZE_ADDRESS__, clang 14 only
+// with __has_feature.
 #if defined(__SANITIZE_ADDRESS__)
+#define AOSUITE_TEST_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define AOSUITE_TEST_ASAN 1
+#endif
+#endif
+#ifdef AOSUITE_TEST_ASAN
 constexpr const char* kAddressLimit = "";
 #else
 constexpr const char* kAddressLimit = "ulimit -v 2000000; ";
