@@ -71,9 +71,11 @@ std::string channel_names(const Imf::ChannelList& list) {
 }  // namespace
 
 // The entry points' contracts are in image/exr_library.hpp.
-extern "C" __attribute__((visibility("default"))) int aosuite_write_exr(
-    const char* path, int width, int height, int channels, const float* pixels, char* err,
-    std::size_t err_len) {
+extern "C" __attribute__((visibility("default"))) int aosuite_write_exr(const char* path, int width,
+                                                                        int height, int channels,
+                                                                        const float* pixels,
+                                                                        char* err,
+                                                                        std::size_t err_len) {
   try {
     Imf::Header header(width, height);
     Imf::FrameBuffer fb;
@@ -83,9 +85,9 @@ extern "C" __attribute__((visibility("default"))) int aosuite_write_exr(
     for (std::size_t c = 0; c < n; ++c) {
       const char* name = n == 3 ? kColour[c] : kGrey[0];
       header.channels().insert(name, Imf::Channel(Imf::FLOAT));
-      fb.insert(name, Imf::Slice(Imf::FLOAT,
-                                 reinterpret_cast<char*>(const_cast<float*>(pixels + c)),
-                                 sizeof(float) * n, sizeof(float) * n * std::size_t(width)));
+      fb.insert(name,
+                Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(const_cast<float*>(pixels + c)),
+                           sizeof(float) * n, sizeof(float) * n * std::size_t(width)));
     }
     Imf::OutputFile out(path, header);
     out.setFrameBuffer(fb);

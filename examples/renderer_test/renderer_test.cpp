@@ -36,8 +36,8 @@ TEST(Renderer, DiscMatchesItsGolden) { EXPECT_MATCHES_GOLDEN(render(64, 48), GOL
 TEST(Renderer, AMovedLightIsCaughtAndItsImagesWritten) {
   const std::filesystem::path failures = std::filesystem::temp_directory_path() / "aosuite-ex";
   setenv("AOSUITE_FAILURES", failures.c_str(), 1);
-  const aosuite::Verdict v = aosuite::matches_golden(render(64, 48, 0.7f), GOLDENS "/disc.png",
-                                                     {}, "Renderer.AMovedLight");
+  const aosuite::Verdict v = aosuite::matches_golden(render(64, 48, 0.7f), GOLDENS "/disc.png", {},
+                                                     "Renderer.AMovedLight");
   EXPECT_EQ(v.status, aosuite::Verdict::Status::kFail) << v;
   EXPECT_GT(v.mismatch_percent, 1);
   EXPECT_TRUE(std::filesystem::exists(v.actual_file)) << v;
@@ -49,8 +49,8 @@ TEST(Renderer, AMovedLightIsCaughtAndItsImagesWritten) {
 
 TEST(Renderer, TheDefaultsPassJitterAndCatchAGlobalShift) {
   aosuite::Image a = render(64, 48), b = a;
-  b.rgba[0] = static_cast<unsigned char>(b.rgba[0] + 3);  // one channel of one pixel
-  EXPECT_TRUE(aosuite::compare(b, a));                     // within every default limit
+  b.rgba[0] = static_cast<unsigned char>(b.rgba[0] + 3);           // one channel of one pixel
+  EXPECT_TRUE(aosuite::compare(b, a));                             // within every default limit
   EXPECT_FALSE(aosuite::compare(render(64, 48, 0.6f, 1.02f), a));  // 2 % brighter: mean shift
 }
 
