@@ -62,6 +62,21 @@ Mesh triangles_of(const aiMesh& m) {
   return out;
 }
 
+// Turns an OBJ's material statements (mtllib, usemtl) into comments: AO needs no material, and
+// assimp 5.2 crashes opening a material library whose name holds odd bytes from memory
+// (fuzz/corpus/mesh/crash-assimp-obj-mtllib, found by the fuzz smoke).
+void drop_materials(std::vector<unsigned char>& obj) {
+  for (std::size_t at = 0; at < obj.size();) {
+    std::size_t word = at;
+    while (word < obj.size() && (obj[word] == ' ' || obj[word] == '\t')) ++word;
+    const std::string_view rest(reinterpret_cast<const char*>(obj.data()) + word,
+                                std::min<std::size_t>(6, obj.size() - word));
+    if (rest == "mtllib" || rest == "usemtl") obj[word] = '#';
+    const auto nl = std::find(obj.begin() + static_cast<std::ptrdiff_t>(at), obj.end(), '\n');
+    at = static_cast<std::size_t>(nl - obj.begin()) + 1;
+  }
+}
+
 }  // namespace
 
 Mesh load_mesh(const std::filesystem::path& path) {
@@ -77,6 +92,7 @@ Mesh load_mesh(const std::filesystem::path& path) {
   }
   if (ext == ".ply") check_ply(path.string(), bytes);
   if (ext == ".off") check_off(path.string(), bytes);
+  if (ext == ".obj") drop_materials(bytes);
 
   // Assimp logs only through a DefaultLogger, which is never created here, so it stays quiet.
   Assimp::Importer importer;
