@@ -62,18 +62,16 @@ Mesh triangles_of(const aiMesh& m) {
   return out;
 }
 
-// Turns an OBJ's material statements (mtllib, usemtl) into comments: AO needs no material, and
-// assimp 5.2 crashes opening a material library whose name holds odd bytes from memory
-// (fuzz/corpus/mesh/crash-assimp-obj-mtllib, found by the fuzz smoke).
+// Turns every material statement of an OBJ (mtllib, usemtl, wherever assimp's lenient parser
+// would find one) into a comment: AO needs no material, and assimp 5.2 crashes opening a
+// material library whose name holds odd bytes from memory (fuzz/corpus/mesh/crash-assimp-*,
+// found by the fuzz smoke).
 void drop_materials(std::vector<unsigned char>& obj) {
-  for (std::size_t at = 0; at < obj.size();) {
-    std::size_t word = at;
-    while (word < obj.size() && (obj[word] == ' ' || obj[word] == '\t')) ++word;
-    const std::string_view rest(reinterpret_cast<const char*>(obj.data()) + word,
-                                std::min<std::size_t>(6, obj.size() - word));
-    if (rest == "mtllib" || rest == "usemtl") obj[word] = '#';
-    const auto nl = std::find(obj.begin() + static_cast<std::ptrdiff_t>(at), obj.end(), '\n');
-    at = static_cast<std::size_t>(nl - obj.begin()) + 1;
+  for (const std::string_view word : {"mtllib", "usemtl"}) {
+    const auto* w = reinterpret_cast<const unsigned char*>(word.data());
+    for (auto at = obj.begin(); (at = std::search(at, obj.end(), w, w + word.size())) != obj.end();
+         ++at)
+      *at = '#';
   }
 }
 
@@ -92,7 +90,12 @@ Mesh load_mesh(const std::filesystem::path& path) {
   }
   if (ext == ".ply") check_ply(path.string(), bytes);
   if (ext == ".off") check_off(path.string(), bytes);
-  if (ext == ".obj") drop_materials(bytes);
+  if (ext == ".obj") {
+    // OBJ is text: a NUL byte means it is not one.
+    if (const auto nul = std::find(bytes.begin(), bytes.end(), 0); nul != bytes.end())
+      fail(path, fmt::format("a NUL byte at offset {}: not an OBJ text file", nul - bytes.begin()));
+    drop_materials(bytes);
+  }
 
   // Assimp logs only through a DefaultLogger, which is never created here, so it stays quiet.
   Assimp::Importer importer;
