@@ -281,15 +281,13 @@ int finish(const hs::RunResults& run, const fs::path& report_dir, const std::str
         skipped_text(*out.skipped));
   }
   if (!run.cases.empty() && run.cases.front().kind == "folder") {
-    int deleted = 0;
-    for (const hs::CaseResult& c : run.cases) deleted += c.message.starts_with("deleted:");
-    say("{} image{}: {} unchanged, {} changed, {} new, {} deleted, {} errors{}. Report: {}\n",
-        run.cases.size(), run.cases.size() == 1 ? "" : "s", n.pass, n.fail - deleted, n.fresh,
-        deleted, n.error, flaky, hs::printable(report));
+    say("{} image{}: {} unchanged, {} changed, {} new, {} deleted, {} error{}{}. Report: {}\n",
+        run.cases.size(), run.cases.size() == 1 ? "" : "s", n.pass, n.fail - n.deleted, n.fresh,
+        n.deleted, n.error, n.error == 1 ? "" : "s", flaky, hs::printable(report));
   } else {
-    say("{} case{}: {} passed, {} failed, {} new, {} errors{}. Report: {}\n", run.cases.size(),
-        run.cases.size() == 1 ? "" : "s", n.pass, n.fail, n.fresh, n.error, flaky,
-        hs::printable(report));
+    say("{} case{}: {} passed, {} failed, {} new, {} error{}{}. Report: {}\n", run.cases.size(),
+        run.cases.size() == 1 ? "" : "s", n.pass, n.fail, n.fresh, n.error, n.error == 1 ? "" : "s",
+        flaky, hs::printable(report));
   }
   print_stale(run);
   for (const hs::CaseResult& c : run.cases) {

@@ -12,6 +12,7 @@
 #include "cli/commands.hpp"
 #include "cli/usage_error.hpp"
 #include "harness/case_kind.hpp"
+#include "harness/invocation.hpp"
 
 namespace {
 
@@ -60,6 +61,7 @@ void add_gl_options(CLI::App& app) {
 }  // namespace
 
 extern "C" int aosuite_check_main(int argc, char** argv) {
+  aosuite::harness::set_invoked_as(argv[0]);  // for the commands it prints
   aosuite::harness::set_kind_loader(load_ao_bench);
   CLI::App app{"aosuite: suites, goldens and reports"};
   app.require_subcommand(1);

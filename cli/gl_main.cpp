@@ -5,6 +5,7 @@
 #include "ao/scene_cases.hpp"
 #include "cli/commands.hpp"
 #include "cli/usage_error.hpp"
+#include "harness/invocation.hpp"
 #include "renderer/gl/gl_context.hpp"
 
 namespace {
@@ -30,6 +31,7 @@ void add_gl_options(CLI::App& app) {
 }  // namespace
 
 extern "C" int aosuite_gl_main(int argc, char** argv) {
+  aosuite::harness::set_invoked_as(argv[0]);  // for the commands it prints
   CLI::App app{"aosuite: rendering commands"};
   app.require_subcommand(1);
   int rc = aosuite::cli::kExitSame;

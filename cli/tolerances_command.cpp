@@ -12,6 +12,7 @@
 #include "cli/commands.hpp"
 #include "common/file_io.hpp"
 #include "harness/escape.hpp"
+#include "harness/invocation.hpp"
 #include "harness/suggest_toml.hpp"
 #include "harness/suite_file.hpp"
 
@@ -53,9 +54,8 @@ std::string limits_text(const hs::Suggestion& s) {
 int finish_folder_mode(const std::vector<hs::Suggestion>& all, const hs::Suite& suite,
                        std::size_t suggested) {
   const std::optional<hs::Tolerance> t = hs::loosest(all);
-  fmt::print(
-      "folder mode, one tolerance for every image ({} of {} suggested):\n  aosuite check {} {}\n",
-      suggested, all.size(), suite.check_args, hs::folder_flags(*t));
+  fmt::print("folder mode, one tolerance for every image ({} of {} suggested):\n  {} check {} {}\n",
+             suggested, all.size(), hs::program_command(), suite.check_args, hs::folder_flags(*t));
   return suggested == all.size() ? kExitSame : kExitDifferent;
 }
 

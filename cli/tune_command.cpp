@@ -14,6 +14,7 @@
 #include "cli/commands.hpp"
 #include "cli/gl_command_util.hpp"
 #include "common/file_io.hpp"
+#include "harness/invocation.hpp"
 #include "renderer/scene/scene.hpp"
 #include "renderer/scene/scene_file.hpp"
 
@@ -35,10 +36,10 @@ std::string command_line(const TuneArgs& a) {
   std::string radii;
   for (float r : a.s.radii) radii += fmt::format(" --radius {:g}", r);
   return fmt::format(
-      "aosuite tune --technique {}{} --scenes {} --width {} --height {} --rays {} --trials {} "
+      "{} tune --technique {}{} --scenes {} --width {} --height {} --rays {} --trials {} "
       "--seed {} --budget-taps {}",
-      a.technique, radii, fmt::join(a.s.scenes, ","), a.s.width, a.s.height, a.s.rays,
-      a.s.search.trials, a.s.search.seed, a.s.search.budget_taps);
+      harness::program_command(), a.technique, radii, fmt::join(a.s.scenes, ","), a.s.width,
+      a.s.height, a.s.rays, a.s.search.trials, a.s.search.seed, a.s.search.budget_taps);
 }
 
 struct Spread {

@@ -149,6 +149,7 @@ json to_json(const CaseResult& c) {
       {"image_hashes", c.image_hashes},
       {"reused", c.reused},
       {"not_reused", c.not_reused},
+      {"deleted", c.deleted},
       {"seconds", c.seconds},
       {"bless_command", printable(c.bless_command)}};
 }
@@ -216,6 +217,7 @@ CaseResult case_from_json(const json& j) {
   c.image_hashes = j.value("image_hashes", std::map<std::string, std::string>{});
   c.reused = j.at("reused"), c.seconds = j.at("seconds");
   c.not_reused = j.value("not_reused", "");
+  c.deleted = j.value("deleted", false);
   c.bless_command = j.at("bless_command");
   return c;
 }
@@ -317,6 +319,7 @@ void write_results(const fs::path& dir, const RunResults& r) {
 Counts count(const RunResults& r) {
   Counts n;
   for (const CaseResult& c : r.cases) {
+    n.deleted += c.deleted;
     switch (c.status) {
       case Status::kPass:
         ++n.pass;

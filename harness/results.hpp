@@ -58,6 +58,7 @@ struct CaseResult {
   std::string command_stderr;  // the end of what its command wrote to stderr
   int attempts = 1;            // how often it ran (--retries)
   bool kept = false;           // bless: the case passes, so its goldens were left as they were
+  bool deleted = false;        // folder mode: the image is only in the expected folder (a FAIL)
 };
 
 struct RunResults {
@@ -102,6 +103,7 @@ void write_results(const std::filesystem::path& dir, const RunResults& r);
 
 struct Counts {
   int pass = 0, fail = 0, fresh = 0, error = 0, flaky = 0, warn = 0;
+  int deleted = 0;  // of `fail`: folder mode's images only in the expected folder
 };
 Counts count(const RunResults& r);
 // 0 all passed (flaky and warning ones too), 1 any failed or new, 2 any could not be judged.

@@ -22,6 +22,7 @@
 #include "harness/command.hpp"
 #include "harness/escape.hpp"
 #include "harness/goldens.hpp"
+#include "harness/invocation.hpp"
 #include "harness/report_images.hpp"
 #include "image/exr_file.hpp"
 #include "image/image_file.hpp"
@@ -77,7 +78,7 @@ std::vector<const Case*> select(const Suite& suite, const Selection& s) {
 
 std::string bless_prefix(const Suite& suite) {
   if (!suite.bless_prefix.empty()) return suite.bless_prefix;
-  std::string out = "aosuite bless " + shell_quote(suite.file.string());
+  std::string out = program_command() + " bless " + shell_quote(suite.file.string());
   if (suite.goldens_given) out += " --goldens " + shell_quote(suite.goldens.string());
   return out;
 }
@@ -474,7 +475,7 @@ void judge_deleted(const Case& c, const RunOptions& o, CaseResult& r) {
   keep_in_report(case_dir / ("golden_image" + c.source->ext),
                  read_regular_file(c.source->golden_file));
   r.files["golden:image"] = c.id + "/golden_image" + c.source->ext;
-  r.status = Status::kFail;
+  r.status = Status::kFail, r.deleted = true;
   r.message = "deleted: only in the expected folder";
   ImageVerdict v;
   v.image = "image", v.status = Status::kFail, v.golden = c.source->golden_file;
@@ -516,7 +517,7 @@ std::vector<CaseResult> for_each_case(const std::vector<const Case*>& cases, con
 }
 
 std::string list_command(const Suite& suite) {
-  return "aosuite check " +
+  return program_command() + " check " +
          (suite.check_args.empty() ? shell_quote(suite.file.string()) : suite.check_args) +
          " --list";
 }

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "harness/escape.hpp"
+#include "harness/invocation.hpp"
 #include "image/picture.hpp"
 
 namespace aosuite::harness {
@@ -123,8 +124,8 @@ Suite folder_suite(const fs::path& actual, const fs::path& expected, const Toler
   suite.goldens = expected;
   suite.goldens_given = true;
   suite.expected = expected;
-  suite.bless_prefix = "aosuite bless --actual " + shell_quote(actual.string()) + " --expected " +
-                       shell_quote(expected.string());
+  suite.bless_prefix = program_command() + " bless --actual " + shell_quote(actual.string()) +
+                       " --expected " + shell_quote(expected.string());
   suite.check_args =
       "--actual " + shell_quote(actual.string()) + " --expected " + shell_quote(expected.string());
   std::map<std::string, std::string> ids;

@@ -551,7 +551,8 @@ TEST_F(HarnessCli, PrintedBlessCommandsAreQuotedAndExact) {
   const auto before = goldens("my 'suites'");
   test::Outcome r = aosuite("check " + suite, broken());
   ASSERT_EQ(r.rc, 1) << r.out << r.err;
-  const std::string all = "to accept all 2 failing and new cases: aosuite bless ";
+  const std::string all =
+      "to accept all 2 failing and new cases: " + std::string(AOSUITE_BIN) + " bless ";
   const std::size_t at = r.out.find(all);
   ASSERT_NE(at, std::string::npos) << r.out;
   std::string command = r.out.substr(at + all.size());

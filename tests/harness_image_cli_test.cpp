@@ -197,8 +197,8 @@ TEST_F(ImageCases, ACommandsImagesPassFailAndAreApprovedFromTheReport) {
   EXPECT_EQ(r.rc, 1) << r.out << r.err;
   EXPECT_NE(r.out.find("NEW   chart"), std::string::npos) << r.out;
   EXPECT_FALSE(fs::exists(dir_ / "s" / "goldens"));
-  EXPECT_NE(r.out.find("or review reports/t/index.html and accept the images it shows: aosuite "
-                       "bless s/t.toml --failed --report reports/t"),
+  EXPECT_NE(r.out.find("or review reports/t/index.html and accept the images it shows: " +
+                       aosuite_bin() + " bless s/t.toml --failed --report reports/t"),
             std::string::npos)
       << r.out;
   r = aosuite("bless s/t.toml --failed");
@@ -244,9 +244,10 @@ TEST_F(ImageCases, ACommandsImagesPassFailAndAreApprovedFromTheReport) {
   EXPECT_NE(junit.find("[[ATTACHMENT|" + report + "/cases/chart/diff_chart.png]]"),
             std::string::npos)
       << junit;
-  EXPECT_NE(junit.find("to accept what the report shows: aosuite bless s/t.toml --from-report "
-                       "--report reports/t --filter &#39;^chart$&#39;"),
-            std::string::npos)
+  EXPECT_NE(
+      junit.find("to accept what the report shows: " + aosuite_bin() +
+                 " bless s/t.toml --from-report --report reports/t --filter &#39;^chart$&#39;"),
+      std::string::npos)
       << junit;
   EXPECT_NE(read_text(dir_ / "reports" / "t" / "index.html").find("chart"), std::string::npos);
 
@@ -1167,6 +1168,34 @@ TEST_F(ImageCases, ACasesGoldensAreReplacedAllOrNothing) {
 
 // Folder mode, as reg-cli: two folders of PNGs paired by relative path; changed, new and
 // deleted images; bless makes the expected folder match.
+// A printed command runs as printed: `aosuite` when the shell found it on PATH, else the path
+// it was started by, made absolute and quoted (a folder with a space in its name).
+TEST_F(ImageCases, PrintedCommandsRunAsPrintedWhicheverWayAosuiteWasStarted) {
+  for (const char* d : {"actual", "expected", "my tools"}) fs::create_directories(dir_ / d);
+  fs::copy_file(dir_ / "s" / "green.png", dir_ / "actual" / "changed.png");
+  fs::copy_file(dir_ / "s" / "red.png", dir_ / "expected" / "changed.png");
+  const std::string folders = " check --actual actual --expected expected --report rep";
+  const std::string accept =
+      " bless --actual actual --expected expected --filter '^changed\\.png$'";
+  test::Outcome r = test::run_shell(
+      "cd " + dir_.path().string() + " && PATH=" + fs::path(aosuite_bin()).parent_path().string() +
+          ":$PATH aosuite" + folders,
+      dir_.path());
+  EXPECT_EQ(r.rc, 1) << r.out << r.err;
+  EXPECT_NE(r.out.find("to accept changed.png: aosuite" + accept + "\n"), std::string::npos)
+      << r.out;
+
+  fs::create_symlink(aosuite_bin(), dir_ / "my tools" / "aosuite");
+  r = test::run_shell("cd " + dir_.path().string() + " && './my tools/aosuite'" + folders,
+                      dir_.path());
+  EXPECT_EQ(r.rc, 1) << r.out << r.err;
+  const std::string printed = "'" + (dir_ / "my tools" / "aosuite").string() + "'" + accept;
+  EXPECT_NE(r.out.find("to accept changed.png: " + printed + "\n"), std::string::npos) << r.out;
+  r = test::run_shell("cd / && cd " + dir_.path().string() + " && " + printed, dir_.path());
+  EXPECT_EQ(r.rc, 0) << r.out << r.err;
+  EXPECT_EQ(read_file(dir_ / "expected" / "changed.png"), read_file(dir_ / "s" / "green.png"));
+}
+
 TEST_F(ImageCases, FolderModeReportsChangedNewAndDeletedAndBlessAcceptsThem) {
   for (const char* d : {"actual/sub", "expected/sub", "empty1", "empty2"}) {
     fs::create_directories(dir_ / d);
@@ -1202,6 +1231,7 @@ TEST_F(ImageCases, FolderModeReportsChangedNewAndDeletedAndBlessAcceptsThem) {
       << r.out;
   const auto results = nlohmann::json::parse(read_text(dir_ / "rep" / "results.json"));
   EXPECT_EQ(results["cases"].size(), 7u);
+  for (const auto& c : results["cases"]) EXPECT_EQ(c["deleted"], c["id"] == "gone.png") << c["id"];
   EXPECT_NE(r.out.find("the float images differ"), std::string::npos) << r.out;
   EXPECT_EQ(results["cases"][0]["kind"], "folder");
   EXPECT_TRUE(fs::exists(dir_ / "rep" / "index.html"));
@@ -1299,8 +1329,9 @@ params = { quality = 0.75, n = 2, label = "x" }
   EXPECT_EQ(lines[2]["type"], "summary");
   EXPECT_EQ(lines[2]["new"], 2);
   EXPECT_EQ(lines[2]["exit_status"], 1);
-  EXPECT_EQ(lines[2]["bless_command"], "aosuite bless s/t.toml --filter '^(chart|disk)$'");
-  EXPECT_EQ(lines[2]["approve_failed"], "aosuite bless s/t.toml --failed --report reports/t");
+  EXPECT_EQ(lines[2]["bless_command"], aosuite_bin() + " bless s/t.toml --filter '^(chart|disk)$'");
+  EXPECT_EQ(lines[2]["approve_failed"],
+            aosuite_bin() + " bless s/t.toml --failed --report reports/t");
 
   if (!has_ao_bench()) return;  // `scenes` belongs to the AO bench
   const test::Outcome scenes = aosuite("scenes --json");
@@ -1434,7 +1465,8 @@ files = ["shots/big.png"]
   const std::string command =
       r.out.substr(c0 + begin.size(), r.out.find("</code>", c0) - c0 - begin.size());
   EXPECT_EQ(command,
-            "aosuite bless s/r.toml --from-report --report reports/r --force --filter '^(a|b)$'");
+            aosuite_bin() +
+                " bless s/r.toml --from-report --report reports/r --force --filter '^(a|b)$'");
   // With the first failure's panel open at 1280x720, nothing covers the approve bar's copy
   // button (the panel once did).
   for (const char* size : {"1280,720", "2200,1200"}) {
@@ -1455,7 +1487,7 @@ files = ["shots/big.png"]
 
   // The copied command approves a and b from the report's images; d stays failing.
   const auto c_before = read_file(dir_ / "s" / "goldens" / "r" / "c" / "c.png");
-  r = aosuite(command.substr(std::string("aosuite ").size()));
+  r = test::run_shell("cd " + dir_.path().string() + " && " + command, dir_.path());
   EXPECT_EQ(r.rc, 0) << r.out << r.err;
   EXPECT_NE(r.out.find("2 of 2 cases blessed"), std::string::npos) << r.out;
   EXPECT_EQ(read_file(dir_ / "s" / "goldens" / "r" / "c" / "c.png"), c_before);

@@ -95,7 +95,8 @@ TEST_F(Presets, TuneWritesAPresetThatRenderTakes) {
       "--trials 6 --out t/sao.toml --json t/r.json",
       env);
   ASSERT_EQ(r.rc, 0) << r.err;
-  EXPECT_EQ(read_text(dir_ / "t" / "sao.toml").rfind("# Made by `aosuite tune --technique sao", 0),
+  EXPECT_EQ(read_text(dir_ / "t" / "sao.toml")
+                .rfind("# Made by `" + std::string(AOSUITE_BIN) + " tune --technique sao", 0),
             0u);
   const nlohmann::json j = nlohmann::json::parse(read_text(dir_ / "t" / "r.json"));
   EXPECT_EQ(j.at("folds").size(), 2u);
