@@ -1,5 +1,6 @@
 // Runs a suite's cases: render (or reuse an unchanged render), judge against the goldens, and
-// record the result; and blesses goldens from renders, only when asked.
+// record the result (check.cpp); and blesses goldens, only when asked (bless.cpp). The steps
+// they share: selection.cpp, case_images.cpp, reuse_cache.cpp, case_verdict.cpp, run_cases.cpp.
 #pragma once
 
 #include <filesystem>
@@ -25,6 +26,10 @@ struct Selection {
 // Bazel set them), else 0/1. Throws std::invalid_argument on a malformed or impossible shard.
 void set_shard(Selection& s, const std::string& text);
 std::vector<const Case*> select(const Suite& suite, const Selection& s);
+// select(), but an empty selection is an error (std::invalid_argument naming the suite and the
+// command that lists its ids), found before anything is written: a run that judged nothing is
+// never green and must not replace the last report.
+std::vector<const Case*> select_some(const Suite& suite, const Selection& s);
 
 struct RunOptions {
   Selection selection;

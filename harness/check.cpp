@@ -1,0 +1,72 @@
+// check: each selected case's images made (or reused), judged, and recorded in the report folder.
+#include <fmt/format.h>
+
+#include "harness/case_images.hpp"
+#include "harness/case_verdict.hpp"
+#include "harness/reuse_cache.hpp"
+#include "harness/run_cases.hpp"
+#include "harness/runner.hpp"
+
+namespace aosuite::harness {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// One attempt at a case: images, then the verdict.
+void check_once(const Suite& suite, const std::string& environment, const std::string& platform,
+                const RunOptions& o, const Cache& cache, Makers& makers, const Case& c,
+                CaseResult& r) {
+  if (c.source && c.source->deleted) {
+    r.input_hash = r.judge_hash = "";
+    judge_deleted(c, o, r);
+    return;
+  }
+  CaseImages images;
+  const auto prev = prepare_images(makers, environment, c, o, cache, r, images);
+  judge_case(suite, c, platform, o, prev, r, images);
+}
+
+}  // namespace
+
+RunResults check(const Suite& suite, const RunOptions& o) {
+  const std::vector<const Case*> cases = select_some(suite, o.selection);
+  Makers first;
+  RunResults run = start_run(suite, o, cases, true, first);
+  const std::string environment = run.environment, platform = run.platform;
+  const Cache cache = load_cache(o.report_dir);
+  RunOptions again = o;
+  again.reuse = false;
+  run.cases =
+      for_each_case(cases, o, std::move(first), [&](Makers& makers, const Case& c, CaseResult& r) {
+        auto attempt = [&](const RunOptions& opts, CaseResult& into) {
+          try {
+            check_once(suite, environment, platform, opts, cache, makers, c, into);
+          } catch (const std::exception& e) {
+            into.status = Status::kError;
+            into.message = e.what();
+          }
+        };
+        attempt(o, r);
+        const CaseResult first_try = r;
+        for (int k = 1; k <= o.retries && (r.status == Status::kFail || r.status == Status::kError);
+             ++k) {
+          r = result_skeleton(c);
+          attempt(again, r);
+          r.attempts = k + 1;
+          if (r.status == Status::kPass || r.status == Status::kWarn) {
+            r.status = Status::kFlaky;
+            r.message =
+                fmt::format("failed, then passed on attempt {}: {}", k + 1, first_try.message);
+          }
+        }
+        if (awaits_approval(r.status)) {
+          r.bless_command = bless_command(bless_prefix(suite), {c.id});
+        }
+      });
+  write_results(o.report_dir, run);
+  save_cache(o.report_dir, cache, run.cases);
+  return run;
+}
+
+}  // namespace aosuite::harness
