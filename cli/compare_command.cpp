@@ -113,7 +113,15 @@ rs::ErrorType error_type_option(const std::string& name) {
 
 rs::Options options_from(const CompareArgs& args) {
   rs::Options o;
-  if (args.mode != "default") o.modes = {rs::parse_mode(args.mode)};
+  // `--limit mode=M` is the tolerance's mode, so it is Resemble's too: the same as --mode M.
+  std::string mode = args.mode;
+  for (const std::string& spec : args.limits) {
+    if (!spec.starts_with("mode=")) continue;
+    if (mode != "default" && mode != spec.substr(5))
+      throw std::invalid_argument("--mode " + mode + " and --limit " + spec + " disagree");
+    mode = spec.substr(5);
+  }
+  if (mode != "default") o.modes = {rs::parse_mode(mode)};
   // Resemble applies a custom tolerance only together with an ignore mode and silently
   // ignores it otherwise (resemblejs-semantics.md). Honouring it without a mode would
   // break parity with Resemble; ignoring it would hide the mistake. So it is an error.

@@ -22,6 +22,8 @@ PACKAGES=(
   python3-skimage
   # Pillow: the oracle of tests/oracles/pillow_formats.py (JPEG, TIFF, WebP, BMP, Targa pixels).
   python3-pil
+  # The Python module (python/, pybind11) and its tests and pytest plugin (tests/python).
+  pybind11-dev python3-dev python3-numpy python3-pytest
 )
 
 # OSMesa is optional (Mesa 25.1 removed it): installed where the distribution still has it, for
