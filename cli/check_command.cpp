@@ -2,7 +2,9 @@
 #include <fmt/format.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <set>
@@ -11,6 +13,7 @@
 #include "cli/commands.hpp"
 #include "common/folder_lock.hpp"
 #include "harness/escape.hpp"
+#include "harness/github.hpp"
 #include "harness/html_report.hpp"
 #include "harness/junit.hpp"
 #include "harness/runner.hpp"
@@ -237,10 +240,29 @@ void print_stale(const hs::RunResults& run) {
       images, images == 1 ? "" : "s", hs::printable(list), images > named.size() ? "; ..." : "");
 }
 
+// On GitHub Actions: annotations on stdout (not among --json's lines, which must stay JSON) and
+// the step summary appended to $GITHUB_STEP_SUMMARY. A summary that cannot be written is a
+// warning: the verdict stands.
+void speak_github(const hs::RunResults& run, const fs::path& report_dir, bool json) {
+  if (!json) say("{}", hs::github_annotations(run, report_dir));
+  const char* summary = std::getenv("GITHUB_STEP_SUMMARY");
+  if (!summary || !*summary) return;
+  std::ofstream file(summary, std::ios::app);
+  file << hs::github_step_summary(run, report_dir);
+  file.flush();
+  if (!file) {
+    fmt::print(stderr, "aosuite: warning: {}: cannot append the step summary\n",
+               hs::printable(summary));
+  }
+}
+
 int finish(const hs::RunResults& run, const fs::path& report_dir, const std::string& junit,
            const Output& out) {
   hs::write_html_report(run, report_dir, {.single_file = out.single_file});
   if (!junit.empty()) hs::write_junit(run, junit, report_dir);
+  if (const char* gh = std::getenv("GITHUB_ACTIONS"); gh && std::string_view(gh) == "true") {
+    speak_github(run, report_dir, out.json);
+  }
   const hs::Counts n = hs::count(run);
   std::vector<std::string> to_accept;
   for (const hs::CaseResult& c : run.cases) {

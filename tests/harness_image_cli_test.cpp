@@ -1168,6 +1168,43 @@ TEST_F(ImageCases, ACasesGoldensAreReplacedAllOrNothing) {
 
 // Folder mode, as reg-cli: two folders of PNGs paired by relative path; changed, new and
 // deleted images; bless makes the expected folder match.
+// On GitHub Actions (GITHUB_ACTIONS=true) check speaks the CI's language: an ::error line per
+// failing case on the actual image, and a step-summary table appended to $GITHUB_STEP_SUMMARY;
+// --json keeps stdout JSON (the summary is still written); elsewhere neither appears.
+TEST_F(ImageCases, OnGitHubActionsFailuresAreAnnotatedAndSummarised) {
+  for (const char* d : {"actual", "expected"}) fs::create_directories(dir_ / d);
+  fs::copy_file(dir_ / "s" / "green.png", dir_ / "actual" / "changed.png");
+  fs::copy_file(dir_ / "s" / "red.png", dir_ / "expected" / "changed.png");
+  fs::copy_file(dir_ / "s" / "red.png", dir_ / "actual" / "same.png");
+  fs::copy_file(dir_ / "s" / "red.png", dir_ / "expected" / "same.png");
+  const std::string folders = "check --actual actual --expected expected --report rep";
+  std::ofstream(dir_ / "summary.md") << "earlier step\n";
+  const std::string gh = "GITHUB_ACTIONS=true GITHUB_STEP_SUMMARY=summary.md";
+  test::Outcome r = aosuite(folders, gh);
+  EXPECT_EQ(r.rc, 1) << r.out << r.err;
+  EXPECT_NE(r.out.find("::error file=actual/changed.png,title=aosuite FAIL changed.png::"
+                       "changed.png: image: mismatch 50.00%25 (allowed 0%25)"),
+            std::string::npos)
+      << r.out;
+  EXPECT_EQ(r.out.find("same.png::"), std::string::npos) << r.out;  // passing: no annotation
+  const std::string summary = read_text(dir_ / "summary.md");
+  EXPECT_EQ(summary.rfind("earlier step\n### aosuite: folder — 2 cases: 1 passed, 1 failed", 0),
+            0u)
+      << summary;
+  EXPECT_NE(summary.find("| changed.png | FAIL | image: mismatch 50.00% (allowed 0%)"),
+            std::string::npos)
+      << summary;
+  EXPECT_NE(summary.find("bless --actual actual --expected expected --failed --report rep`"),
+            std::string::npos)
+      << summary;
+
+  r = aosuite(folders + " --json", gh);
+  EXPECT_EQ(r.out.find("::error"), std::string::npos) << r.out;
+  EXPECT_NE(read_text(dir_ / "summary.md").find("earlier step\n### aosuite"), std::string::npos);
+  r = aosuite(folders);
+  EXPECT_EQ(r.out.find("::error"), std::string::npos) << r.out;
+}
+
 // A printed command runs as printed: `aosuite` when the shell found it on PATH, else the path
 // it was started by, made absolute and quoted (a folder with a space in its name).
 TEST_F(ImageCases, PrintedCommandsRunAsPrintedWhicheverWayAosuiteWasStarted) {

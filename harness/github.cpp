@@ -1,0 +1,120 @@
+#include "harness/github.hpp"
+
+#include <fmt/format.h>
+
+#include "harness/escape.hpp"
+#include "harness/runner.hpp"
+
+namespace aosuite::harness {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// A workflow command's message: %, CR and LF escaped (@actions/core's escapeData); a property
+// also escapes : and , (escapeProperty).
+std::string escape_data(std::string_view s) {
+  std::string out;
+  for (const char ch : printable(s)) {
+    if (ch == '%')
+      out += "%25";
+    else if (ch == '\r')
+      out += "%0D";
+    else if (ch == '\n')
+      out += "%0A";
+    else
+      out += ch;
+  }
+  return out;
+}
+std::string escape_property(std::string_view s) {
+  std::string out;
+  for (const char ch : escape_data(s)) {
+    if (ch == ':')
+      out += "%3A";
+    else if (ch == ',')
+      out += "%2C";
+    else
+      out += ch;
+  }
+  return out;
+}
+
+// A table cell: one line, | escaped.
+std::string cell(std::string_view s) {
+  std::string out;
+  for (const char ch : printable(s)) {
+    if (ch == '|')
+      out += "\\|";
+    else
+      out += ch == '\n' || ch == '\r' ? ' ' : ch;
+  }
+  return out;
+}
+
+// The file an annotation is on: folder mode's actual image, else the suite file; relative to
+// the current folder (the workflow's workspace) where it lies below it, as GitHub matches them.
+std::string annotated_file(const RunResults& run, const CaseResult& c) {
+  if (run.suite_file.empty()) return "";
+  fs::path file = run.suite_file;
+  if (!run.expected_folder.empty()) file /= c.source;
+  std::error_code ec;
+  const fs::path here = fs::current_path(ec);
+  const fs::path relative = ec ? fs::path() : file.lexically_relative(here);
+  const bool below = !relative.empty() && *relative.begin() != "..";
+  return (below ? relative : file).string();
+}
+
+std::string panel(const CaseResult& c, const fs::path& report_dir) {
+  return (fs::absolute(report_dir).lexically_normal() / "index.html").string() + "#case=" + c.id;
+}
+
+}  // namespace
+
+std::string github_annotations(const RunResults& run, const fs::path& report_dir) {
+  std::string out;
+  for (const CaseResult& c : run.cases) {
+    if (c.status == Status::kPass) continue;
+    const bool error = awaits_approval(c.status) || c.status == Status::kError;
+    const std::string file = annotated_file(run, c);
+    const std::string where = file.empty() ? "" : "file=" + escape_property(file) + ",";
+    std::string text = c.id + ": " + c.message + " (report: " + panel(c, report_dir);
+    if (awaits_approval(c.status) && !run.approve_prefix.empty())
+      text += "; to accept what the report shows: " + bless_command(run.approve_prefix, {c.id});
+    out += fmt::format("::{} {}title={}::{})\n", error ? "error" : "warning", where,
+                       escape_property(fmt::format("aosuite {} {}", status_name(c.status), c.id)),
+                       escape_data(text));
+  }
+  return out;
+}
+
+std::string github_step_summary(const RunResults& run, const fs::path& report_dir) {
+  const Counts n = count(run);
+  std::string out = fmt::format(
+      "### aosuite: {} — {} case{}: {} passed, {} failed, {} new, {} error{}{}{}\n\n",
+      cell(run.suite), run.cases.size(), run.cases.size() == 1 ? "" : "s", n.pass, n.fail, n.fresh,
+      n.error, n.error == 1 ? "" : "s", n.flaky ? fmt::format(", {} flaky", n.flaky) : "",
+      n.warn ? fmt::format(", {} with warnings", n.warn) : "");
+  constexpr int kRows = 50;
+  int rows = 0, more = 0;
+  std::string table = "| case | status | why |\n| --- | --- | --- |\n";
+  for (const CaseResult& c : run.cases) {
+    if (c.status == Status::kPass) continue;
+    if (rows++ >= kRows) {
+      ++more;
+      continue;
+    }
+    table += fmt::format("| {} | {} | {} |\n", cell(c.id), status_name(c.status), cell(c.message));
+  }
+  if (rows > 0) out += table + (more ? fmt::format("\n…and {} more.\n", more) : "") + "\n";
+  out += "Report: `" + cell((fs::absolute(report_dir).lexically_normal() / "index.html").string()) +
+         "`\n";
+  if (n.fail + n.fresh > 0 && !run.bless_prefix.empty()) {
+    out += "\nTo accept what the report shows: `" +
+           cell(run.bless_prefix + " --failed --report " + shell_quote(report_dir.string())) +
+           "`\n";
+  }
+  return out + "\n";
+}
+
+}  // namespace aosuite::harness
