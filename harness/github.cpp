@@ -11,45 +11,54 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// A workflow command's message: %, CR and LF escaped (@actions/core's escapeData); a property
-// also escapes : and , (escapeProperty).
-std::string escape_data(std::string_view s) {
+// `s` made printable, with each character `escaped` names replaced by its text.
+template <typename Escaped>
+std::string escape_with(std::string_view s, Escaped escaped) {
   std::string out;
   for (const char ch : printable(s)) {
-    if (ch == '%')
-      out += "%25";
-    else if (ch == '\r')
-      out += "%0D";
-    else if (ch == '\n')
-      out += "%0A";
-    else
+    const std::string_view e = escaped(ch);
+    if (e.empty()) {
       out += ch;
-  }
-  return out;
-}
-std::string escape_property(std::string_view s) {
-  std::string out;
-  for (const char ch : escape_data(s)) {
-    if (ch == ':')
-      out += "%3A";
-    else if (ch == ',')
-      out += "%2C";
-    else
-      out += ch;
+    } else {
+      out += e;
+    }
   }
   return out;
 }
 
+// A workflow command's message: %, CR and LF escaped (@actions/core's escapeData); a property
+// also escapes : and , (escapeProperty).
+std::string_view data_escape(char ch) {
+  switch (ch) {
+    case '%':
+      return "%25";
+    case '\r':
+      return "%0D";
+    case '\n':
+      return "%0A";
+    default:
+      return {};
+  }
+}
+std::string_view property_escape(char ch) {
+  switch (ch) {
+    case ':':
+      return "%3A";
+    case ',':
+      return "%2C";
+    default:
+      return data_escape(ch);
+  }
+}
+std::string escape_data(std::string_view s) { return escape_with(s, data_escape); }
+std::string escape_property(std::string_view s) { return escape_with(s, property_escape); }
+
 // A table cell: one line, | escaped.
 std::string cell(std::string_view s) {
-  std::string out;
-  for (const char ch : printable(s)) {
-    if (ch == '|')
-      out += "\\|";
-    else
-      out += ch == '\n' || ch == '\r' ? ' ' : ch;
-  }
-  return out;
+  return escape_with(s, [](char ch) -> std::string_view {
+    if (ch == '|') return "\\|";
+    return ch == '\n' || ch == '\r' ? " " : "";
+  });
 }
 
 // The file an annotation is on: folder mode's actual image, else the suite file; relative to
