@@ -8,6 +8,8 @@ PACKAGES=(
   g++ cmake make pkg-config
   # dpkg-shlibdeps: `cpack -G DEB` names the packages the .deb depends on (install_package test).
   dpkg-dev
+  # lintian: the install_package test lints the five packages (no errors).
+  lintian
   # ccache: the test tier's second builds reuse the main build's objects (CMakeLists.txt).
   ccache
   libspng-dev libisal-dev libopencv-core-dev libfmt-dev libcli11-dev nlohmann-json3-dev

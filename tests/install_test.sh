@@ -31,13 +31,53 @@ eval "$bless"
 cmp actual/disc.png expected/disc.png
 aosuite check --actual actual --expected expected --report report >/dev/null
 
-# The Debian package.
-(cd "$build" && cpack -G DEB -B "$work/deb" >/dev/null)
+# The Debian packages, one per thing users install (cmake/Install.cmake): lintian finds no
+# error in any, and the image tool's Depends name nothing of the AO bench.
+# (CPack's developer warnings that the plugins have no soname for a shlibs file go to its log.)
+(cd "$build" && cpack -G DEB -B "$work/deb" >"$work/cpack.log" 2>&1) || { cat "$work/cpack.log" >&2; exit 1; }
+for p in aosuite aosuite-oiio libaosuite-dev; do test -f "$work/deb/${p}_"*.deb; done
 deb=$(ls "$work"/deb/aosuite_*.deb)
 contents=$(dpkg-deb -c "$deb")
 grep -q '\./usr/bin/aosuite$' <<<"$contents"
-grep -q '\./usr/lib/aosuite/libaosuite_check.so$' <<<"$contents"
-grep -q libspng <<<"$(dpkg-deb -f "$deb" Depends)"
+grep -q '\./usr/lib/[a-z0-9_-]*-linux-gnu/aosuite/libaosuite_check.so$' <<<"$contents"
+grep -q '\./usr/share/doc/aosuite/copyright$' <<<"$contents"
+depends=$(dpkg-deb -f "$deb" Depends)
+grep -q libspng <<<"$depends"
+if grep -Ei 'mesa|egl|libgl|embree|opencv|assimp|openimageio' <<<"$depends"; then
+  echo "install_test: the image tool's package depends on the AO bench: $depends" >&2
+  exit 1
+fi
+if command -v lintian >/dev/null; then
+  lintian --fail-on error "$work"/deb/*.deb
+else
+  echo "install_test: lintian not installed (scripts/setup.sh installs it): packages not linted"
+fi
+
+# The aosuite package alone, unpacked in a scratch root: folder mode on PNG, JPEG and EXR works
+# and loads no GL, EGL, Embree, assimp, OpenCV or OpenImageIO library.
+dpkg-deb -x "$deb" "$work/root"
+mkdir -p "$work/formats/actual" "$work/formats/expected"
+cp "$golden" "$work/formats/actual/same.png"
+cp "$src/fuzz/corpus/codecs/rgb_9x6.jpg" "$work/formats/actual/photo.jpg"
+cp "$src/fuzz/corpus/exr/rgb_small.exr" "$work/formats/actual/light.exr"
+cp "$work/formats/actual/"* "$work/formats/expected/"
+cp rendered/plane_above_alchemy_with_ao.png "$work/formats/expected/changed.png"
+cp "$golden" "$work/formats/actual/changed.png"
+set +e
+(cd "$work/formats" && LD_DEBUG=files "$work/root/usr/bin/aosuite" check --actual actual \
+  --expected expected --report report >out.txt 2>ld.txt)
+rc=$?
+set -e
+grep -q '4 images: 3 unchanged, 1 changed, 0 new, 0 deleted, 0 errors' "$work/formats/out.txt" ||
+  { cat "$work/formats/out.txt" >&2; exit 1; }
+[ "$rc" = 1 ]
+grep -q 'file=.*libaosuite_exr.so' "$work/formats/ld.txt"
+grep -q "file=$work/root/usr/lib/.*/aosuite/libaosuite_check.so" "$work/formats/ld.txt"
+if grep -Ei 'file=[^ ]*(libEGL|libGL|libembree|libopencv|libassimp|libOpenImageIO)' \
+  "$work/formats/ld.txt"; then
+  echo "install_test: folder mode loaded a library of the AO bench" >&2
+  exit 1
+fi
 
 # A C++ consumer of the installed package.
 cmake -S "$src/examples/renderer_test" -B "$work/example" -DCMAKE_PREFIX_PATH="$work/prefix" \
