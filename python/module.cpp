@@ -189,6 +189,8 @@ PYBIND11_MODULE(_aosuite, m) {
         py::arg("metrics") = std::vector<std::string>(), py::arg("diff") = false);
   m.def("write_image", &aosuite::python::write_image, py::arg("file"), py::arg("image"));
   m.attr("LIMIT_KEYS") = aosuite::comparison::kLimitKeys;
+  m.attr("BUILD_AOSUITE") =
+      AOSUITE_BUILD_BIN;  // this build's `aosuite`, the last resort of check()
   // A file that cannot be read or decoded: one line naming it, as the CLI says it.
   py::register_exception_translator([](std::exception_ptr p) {
     try {

@@ -13,14 +13,18 @@ verdict and its message are exactly the CLI's.
 
 from __future__ import annotations
 
+import json
 import os
+import shutil
+import subprocess
 from dataclasses import dataclass, field
 from typing import Any, Optional
 
 from . import _aosuite
 
 LIMIT_KEYS = _aosuite.LIMIT_KEYS
-__all__ = ["Result", "compare", "matches_golden", "write_image", "LIMIT_KEYS"]
+__all__ = ["Result", "Run", "compare", "matches_golden", "write_image", "check", "bless",
+           "LIMIT_KEYS"]
 
 
 @dataclass
@@ -111,3 +115,75 @@ def matches_golden(image, golden, *, update: Optional[bool] = None,
     written = result.actual_file + (", " + result.diff_file if result.diff_file else "")
     result.message = f"{golden}: {result.message} (written: {written})"
     return result
+
+
+@dataclass
+class Run:
+    """A suite run: the `aosuite` command's exit status, its cases and summary as `--json`
+    prints them (each case as results.json records it), and its report folder."""
+
+    exit_status: int  # 0 all passed, 1 any failed or new, 2 any could not be judged
+    cases: list
+    summary: dict
+    report: str
+    stderr: str = ""
+
+    def __bool__(self) -> bool:
+        return self.exit_status == 0
+
+    def case(self, case_id: str) -> dict:
+        return next(c for c in self.cases if c["id"] == case_id)
+
+
+def _aosuite_command() -> str:
+    # AOSUITE_BIN, else the aosuite on PATH, else the build this module was built with.
+    return (os.environ.get("AOSUITE_BIN") or shutil.which("aosuite")
+            or _aosuite.BUILD_AOSUITE)
+
+
+def _suite_args(suite, goldens, filter, shard):
+    args = [os.fspath(suite)]
+    if goldens is not None:
+        args += ["--goldens", os.fspath(goldens)]
+    if filter is not None:
+        args += ["--filter", filter]
+    if shard is not None:
+        args += ["--shard", shard]
+    return args
+
+
+def check(suite, *, report=None, goldens=None, filter=None, shard=None, jobs=None,
+          junit=None, extra=()) -> Run:
+    """Runs `aosuite check` on a suite file and returns its results: the same run, verdicts,
+    messages, report and exit status as the command (it is the command)."""
+    report = os.fspath(report) if report is not None else os.path.join(
+        "reports", os.path.splitext(os.path.basename(os.fspath(suite)))[0])
+    args = [_aosuite_command(), "check", *_suite_args(suite, goldens, filter, shard),
+            "--report", report, "--json"]
+    if jobs is not None:
+        args += ["-j", str(jobs)]
+    if junit is not None:
+        args += ["--junit", os.fspath(junit)]
+    done = subprocess.run(args + list(extra), capture_output=True, text=True, check=False)
+    lines = [json.loads(line) for line in done.stdout.splitlines() if line.startswith("{")]
+    cases = [line for line in lines if line.get("type") == "case"]
+    summary = next((line for line in lines if line.get("type") == "summary"), {})
+    if done.returncode == 2 and not summary:
+        raise ValueError(done.stderr.strip() or f"aosuite check exited with 2: {args}")
+    return Run(done.returncode, cases, summary, report, done.stderr)
+
+
+def bless(suite, *, goldens=None, filter=None, report=None, failed=False, force=False) -> int:
+    """Runs `aosuite bless` (from `report`'s images with failed=True); returns its exit status,
+    raising ValueError with its message when it could not bless."""
+    args = [_aosuite_command(), "bless", *_suite_args(suite, goldens, filter, None)]
+    if failed:
+        args += ["--failed"]
+    if report is not None:
+        args += ["--report", os.fspath(report)]
+    if force:
+        args += ["--force"]
+    done = subprocess.run(args, capture_output=True, text=True, check=False)
+    if done.returncode != 0:
+        raise ValueError(done.stderr.strip() or done.stdout.strip())
+    return done.returncode
