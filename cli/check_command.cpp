@@ -45,10 +45,19 @@ struct HarnessArgs {
   bool diff_all = false, no_reuse = false, platform = false, list = false, json = false;
   bool force = false, from_report = false, failed = false, single_file = false;
   bool wait = false;  // for a folder another run holds, instead of failing at once
+  std::string annotations = "auto";
   // bless --failed/--from-report with no suite named: the suite name the report's results.json
   // gives, which the suite file it names must carry too.
   std::string report_suite;
 };
+
+void add_annotations_option(CLI::App* cmd, std::string& annotations) {
+  cmd->add_option("--annotations", annotations,
+                  "github: ::error/::warning lines and a Markdown table appended to "
+                  "$GITHUB_STEP_SUMMARY; none; auto (default): github under GitHub Actions")
+      ->option_text("auto|github|none")
+      ->check(CLI::IsMember({"auto", "github", "none"}));
+}
 
 void add_selection_options(CLI::App* cmd, HarnessArgs& a) {
   cmd->add_option("suite", a.suite, "suite file, e.g. suites/default.toml")->option_text("SUITE");
@@ -207,6 +216,7 @@ struct Output {
   bool json = false;
   bool single_file = false;
   const std::vector<hs::Skipped>* skipped = nullptr;  // folder mode's files that are no case
+  std::string annotations = "auto";  // github, none, or auto: github under GitHub Actions
 };
 
 // "a.txt (not an image file), loop.png (a symbolic link (not followed)), and 3 more"
@@ -260,7 +270,9 @@ int finish(const hs::RunResults& run, const fs::path& report_dir, const std::str
            const Output& out) {
   hs::write_html_report(run, report_dir, {.single_file = out.single_file});
   if (!junit.empty()) hs::write_junit(run, junit, report_dir);
-  if (const char* gh = std::getenv("GITHUB_ACTIONS"); gh && std::string_view(gh) == "true") {
+  const char* actions = std::getenv("GITHUB_ACTIONS");
+  if (out.annotations == "github" ||
+      (out.annotations == "auto" && actions && std::string_view(actions) == "true")) {
     speak_github(run, report_dir, out.json);
   }
   const hs::Counts n = hs::count(run);
@@ -363,7 +375,10 @@ int run_check(const HarnessArgs& a) {
   const FolderLock report(o.report_dir, a.wait);  // held until the report is written
   const hs::RunResults run = hs::check(suite, o);
   return finish(run, o.report_dir, a.junit,
-                {.json = a.json, .single_file = a.single_file, .skipped = &suite.skipped});
+                {.json = a.json,
+                 .single_file = a.single_file,
+                 .skipped = &suite.skipped,
+                 .annotations = a.annotations});
 }
 
 // `bless --failed --report DIR` (or --from-report) with no suite named: the suite file, or
@@ -496,7 +511,7 @@ int shard_count(const std::vector<hs::RunResults>& parts, const std::vector<std:
 // and before anything is written: one suite, no case twice, every shard of the run there
 // unless `partial` (then the report says which are missing).
 int run_merge(const std::string& out, const std::vector<std::string>& shards,
-              const std::string& junit, bool partial, bool wait) {
+              const std::string& junit, bool partial, bool wait, const std::string& annotations) {
   std::vector<hs::RunResults> parts;
   for (const std::string& dir : shards) {
     parts.push_back(hs::read_results(dir));
@@ -554,7 +569,7 @@ int run_merge(const std::string& out, const std::vector<std::string>& shards,
     }
   }
   hs::write_results(out, merged);
-  return finish(merged, out, junit, {});
+  return finish(merged, out, junit, {.annotations = annotations});
 }
 
 // Runs `f`, showing an error's bytes that are not printable UTF-8 escaped (a path may hold any).
@@ -588,6 +603,7 @@ void add_check_command(CLI::App& app, int& rc) {
                 "print one JSON object per case as it finishes, then a summary object");
   cmd->add_flag("--single-file", a->single_file,
                 "embed the images in index.html (one file to mail; for small suites)");
+  add_annotations_option(cmd, a->annotations);
   guarded(cmd, rc, "check", [a] { return escaped_errors([&] { return run_check(*a); }); });
 }
 
@@ -625,8 +641,11 @@ void add_report_command(CLI::App& app, int& rc) {
   merge->add_flag("--partial", *partial,
                   "merge even when shards of the run are missing; the report says which");
   merge->add_flag("--wait", *wait, "wait for another aosuite writing --out");
-  guarded(merge, rc, "report merge", [out, shards, junit, partial, wait] {
-    return escaped_errors([&] { return run_merge(*out, *shards, *junit, *partial, *wait); });
+  auto annotations = std::make_shared<std::string>("auto");
+  add_annotations_option(merge, *annotations);
+  guarded(merge, rc, "report merge", [out, shards, junit, partial, wait, annotations] {
+    return escaped_errors(
+        [&] { return run_merge(*out, *shards, *junit, *partial, *wait, *annotations); });
   });
 }
 

@@ -74,6 +74,27 @@ std::string annotated_file(const RunResults& run, const CaseResult& c) {
   return (below ? relative : file).string();
 }
 
+// The largest difference of the case's images ("image: 42 @ (200, 152)"), as the terminal
+// line gives it; "" where none was measured (new, deleted, could not be judged).
+std::string largest_difference(const CaseResult& c) {
+  std::string out;
+  for (const ImageVerdict& v : c.images) {
+    const std::string at = v.largest.text();
+    if (!at.empty()) out += (out.empty() ? "" : "; ") + v.image + ": " + at;
+  }
+  return out;
+}
+
+// "123 files, 4.5 MB": what a CI uploads as the report's artifact (links not followed).
+std::string folder_size(const fs::path& dir) {
+  std::uintmax_t bytes = 0, files = 0;
+  std::error_code ec;
+  for (fs::recursive_directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    if (it->is_regular_file(ec) && !it->is_symlink(ec)) bytes += it->file_size(ec), ++files;
+  }
+  return fmt::format("{} file{}, {:.1f} MB", files, files == 1 ? "" : "s", double(bytes) / 1e6);
+}
+
 std::string panel(const CaseResult& c, const fs::path& report_dir) {
   return (fs::absolute(report_dir).lexically_normal() / "index.html").string() + "#case=" + c.id;
 }
@@ -106,18 +127,20 @@ std::string github_step_summary(const RunResults& run, const fs::path& report_di
       n.warn ? fmt::format(", {} with warnings", n.warn) : "");
   constexpr int kRows = 50;
   int rows = 0, more = 0;
-  std::string table = "| case | status | why |\n| --- | --- | --- |\n";
+  std::string table = "| case | status | largest difference | why |\n| --- | --- | --- | --- |\n";
   for (const CaseResult& c : run.cases) {
     if (c.status == Status::kPass) continue;
     if (rows++ >= kRows) {
       ++more;
       continue;
     }
-    table += fmt::format("| {} | {} | {} |\n", cell(c.id), status_name(c.status), cell(c.message));
+    table += fmt::format("| {} | {} | {} | {} |\n", cell(c.id), status_name(c.status),
+                         cell(largest_difference(c)), cell(c.message));
   }
   if (rows > 0) out += table + (more ? fmt::format("\n…and {} more.\n", more) : "") + "\n";
-  out += "Report: `" + cell((fs::absolute(report_dir).lexically_normal() / "index.html").string()) +
-         "`\n";
+  out += fmt::format("Report: `{}` ({})\n",
+                     cell((fs::absolute(report_dir).lexically_normal() / "index.html").string()),
+                     folder_size(report_dir));
   if (n.fail + n.fresh > 0 && !run.bless_prefix.empty()) {
     out += "\nTo accept what the report shows: `" +
            cell(run.bless_prefix + " --failed --report " + shell_quote(report_dir.string())) +

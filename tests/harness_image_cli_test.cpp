@@ -1191,9 +1191,11 @@ TEST_F(ImageCases, OnGitHubActionsFailuresAreAnnotatedAndSummarised) {
   EXPECT_EQ(summary.rfind("earlier step\n### aosuite: folder — 2 cases: 1 passed, 1 failed", 0),
             0u)
       << summary;
-  EXPECT_NE(summary.find("| changed.png | FAIL | image: mismatch 50.00% (allowed 0%)"),
+  EXPECT_NE(summary.find("| changed.png | FAIL | image: 255 @ (0, 0) | image: mismatch 50.00% "
+                         "(allowed 0%)"),
             std::string::npos)
       << summary;
+  EXPECT_NE(summary.find("/rep/index.html` ("), std::string::npos) << summary;  // and its size
   EXPECT_NE(summary.find("bless --actual actual --expected expected --failed --report rep`"),
             std::string::npos)
       << summary;
@@ -1203,6 +1205,20 @@ TEST_F(ImageCases, OnGitHubActionsFailuresAreAnnotatedAndSummarised) {
   EXPECT_NE(read_text(dir_ / "summary.md").find("earlier step\n### aosuite"), std::string::npos);
   r = aosuite(folders);
   EXPECT_EQ(r.out.find("::error"), std::string::npos) << r.out;
+  // Asked for by name elsewhere; turned off on GitHub.
+  r = aosuite(folders + " --annotations github");
+  EXPECT_NE(r.out.find("::error file=actual/changed.png"), std::string::npos) << r.out;
+  r = aosuite(folders + " --annotations none", gh);
+  EXPECT_EQ(r.out.find("::error"), std::string::npos) << r.out;
+  // report merge speaks too.
+  const std::string shard = "check --actual actual --expected expected --shard ";
+  aosuite(shard + "0/2 --report s0");
+  aosuite(shard + "1/2 --report s1");
+  r = aosuite("report merge --out merged s0 s1 --annotations github");
+  EXPECT_EQ(r.rc, 1) << r.out << r.err;
+  EXPECT_NE(r.out.find("::error file=actual/changed.png,title=aosuite FAIL changed.png::"),
+            std::string::npos)
+      << r.out;
 }
 
 // A printed command runs as printed: `aosuite` when the shell found it on PATH, else the path
