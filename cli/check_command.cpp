@@ -193,6 +193,10 @@ void print_progress(const hs::CaseResult& r, int done, int total) {
     if (v.identical) detail += " (identical)";
   }
   if (r.status != hs::Status::kPass && !r.message.empty()) detail += "  " + r.message;
+  for (const hs::ImageVerdict& v : r.images) {
+    if (!v.changes.empty())
+      detail += "  " + v.image + " changed: " + comparison::changes_text(v.changes, 2);
+  }
   if (r.kind == "folder") detail = "  " + r.source + detail;
   say("[{:>{}}/{}] {:<5} {}{}  {:.2f} s{}{}\n", done, fmt::formatted_size("{}", total), total,
       hs::status_name(r.status), r.id, hs::printable(detail), r.seconds,

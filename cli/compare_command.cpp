@@ -252,6 +252,7 @@ void print_human(const std::string& a, const std::string& b, const comparison::C
   }
   for (const std::string& line : metric_lines(c)) fmt::print("{} vs {}: {}\n", a, b, line);
   if (!c.same()) fmt::print("failed: {}\n", c.message());
+  if (!c.changes.empty()) fmt::print("changed: {}\n", comparison::changes_text(c.changes, 5));
 }
 
 // The JSON: Resemble.js's own object, key for key, then the metrics measured, then what the
@@ -260,6 +261,7 @@ std::string json_line(const comparison::Comparison& c, nlohmann::ordered_json ex
   for (const metric::Measurement& m : c.measured) extra[m.metric] = m.json();
   extra["verdict"] = c.same() ? "same" : "different";
   extra["failed_gates"] = c.failed;
+  if (!c.changes.empty()) extra["changes"] = comparison::changes_json(c.changes);
   return c.resemble ? rs::result_json(*c.resemble, extra) : extra.dump();
 }
 

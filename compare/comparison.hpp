@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "common/file_io.hpp"
+#include "compare/change_regions.hpp"
 #include "compare/metric.hpp"
 #include "compare/resemble.hpp"
 #include "compare/tolerance.hpp"
@@ -81,6 +82,9 @@ struct Comparison {
   std::vector<std::uint8_t> ignored;          // with a diff: the pixels the tolerance ignored
   RgbaImage heatmap;  // the heat-map metric's map, when asked and not the same
   std::optional<resemble::Result> resemble;  // Resemble's own result, for `compare`'s output
+  // What kind of change each changed region is (shift, brightness, added, ...): 8-bit images
+  // that are not the same only.
+  std::vector<ChangedRegion> changes;
   bool same() const { return verdict != Verdict::kDifferent; }
   std::string message() const;  // the failed limits, or "warning: " and the warned ones
 };

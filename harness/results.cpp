@@ -55,6 +55,7 @@ json to_json(const ImageVerdict& v) {
           {"mean_delta", v.mean_delta},
           {"kinds", {v.expected_kind, v.actual_kind}},
           {"largest", {{"value", v.largest.value}, {"x", v.largest.x}, {"y", v.largest.y}}},
+          {"changes", comparison::changes_json(v.changes)},
           {"stale", v.stale},
           {"golden", printable(v.golden.string())},
           {"golden_hash", v.golden_hash},
@@ -72,6 +73,8 @@ ImageVerdict verdict_from_json(const json& j) {
   v.max_channel_delta = int_at(j, "max_channel_delta");
   v.differing_pixels = j.value("differing_pixels", 0LL);
   v.mean_shift = j.value("mean_shift", 0.0), v.mean_delta = j.value("mean_delta", 0.0);
+  if (const auto ch = j.find("changes"); ch != j.end())
+    v.changes = comparison::changes_from_json(*ch);
   if (const auto l = j.find("largest"); l != j.end()) {  // absent in older results
     v.largest = {l->at("value").get<double>(), int_at(*l, "x"), int_at(*l, "y")};
   }

@@ -142,11 +142,14 @@ TEST_F(CliCompare, JsonHasResemblesKeysInOrder) {
   const auto j = nlohmann::ordered_json::parse(r.out);
   std::vector<std::string> keys;
   for (const auto& [k, v] : j.items()) keys.push_back(k);
-  // Resemble.js's own keys first, in its order; then what the exit status says.
+  // Resemble.js's own keys first, in its order; then what the exit status says and what kind
+  // of change it saw.
   EXPECT_EQ(keys, (std::vector<std::string>{"misMatchPercentage", "rawMisMatchPercentage",
                                             "isSameDimensions", "dimensionDifference", "diffBounds",
-                                            "analysisTime", "verdict", "failed_gates"}));
+                                            "analysisTime", "verdict", "failed_gates", "changes"}));
   EXPECT_EQ(j["verdict"], "different");
+  ASSERT_EQ(j["changes"].size(), 1u);  // one changed pixel: scattered, so noise
+  EXPECT_EQ(j["changes"][0]["pixels"], 1);
   EXPECT_EQ(j["misMatchPercentage"], "0.17");
   EXPECT_EQ(j["diffBounds"].dump(), R"({"top":5,"left":7,"bottom":5,"right":7})");
 }

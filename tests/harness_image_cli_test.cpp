@@ -180,6 +180,15 @@ TEST_F(ImageCases, TheTemplateAndTheDefaultsCatchAGlobalShadingChange) {
   r = aosuite("check --actual actual --expected expected");
   EXPECT_EQ(r.rc, 1) << r.out;
   EXPECT_NE(r.out.find("max channel delta 12 (allowed 8)"), std::string::npos) << r.out;
+  // The line says what kind of change it was, and results.json records it.
+  EXPECT_NE(r.out.find("image changed: darker by 12.0 levels, 64x36 at (0, 0), 2304 px"),
+            std::string::npos)
+      << r.out;
+  const auto results =
+      nlohmann::json::parse(read_text(dir_ / "reports" / "folder" / "results.json"));
+  EXPECT_EQ(results["cases"][0]["images"][0]["changes"][0]["kind"], "brightness") << results.dump();
+  EXPECT_NE(read_text(dir_ / "reports" / "folder" / "index.html").find("darker by 12.0 levels"),
+            std::string::npos);  // the page's panel shows it
   std::ofstream(dir_ / "template.toml")
       << tolerance << "[[case]]\nname = \"shade\"\nfiles = [\"actual/shade.png\"]\n";
   fs::create_directories(dir_ / "goldens" / "template" / "shade");
@@ -1188,8 +1197,7 @@ TEST_F(ImageCases, OnGitHubActionsFailuresAreAnnotatedAndSummarised) {
       << r.out;
   EXPECT_EQ(r.out.find("same.png::"), std::string::npos) << r.out;  // passing: no annotation
   const std::string summary = read_text(dir_ / "summary.md");
-  EXPECT_EQ(summary.rfind("earlier step\n### aosuite: folder — 2 cases: 1 passed, 1 failed", 0),
-            0u)
+  EXPECT_EQ(summary.rfind("earlier step\n### aosuite: folder — 2 cases: 1 passed, 1 failed", 0), 0u)
       << summary;
   EXPECT_NE(summary.find("| changed.png | FAIL | image: 255 @ (0, 0) | image: mismatch 50.00% "
                          "(allowed 0%)"),

@@ -189,6 +189,7 @@
     const where = v.largest ? `, largest difference ${esc(v.largest)}` : "";
     let h = `<h3>${esc(v.image)} — <span class="${v.status}">${v.status}</span>${resemble}${where}${v.identical ? ", byte-identical" : ""}</h3>`;
     if (v.message) h += `<p>${esc(v.message)}</p>`;
+    if (v.changes) h += `<p class=changes>What changed: ${esc(v.changes)}</p>`;
     if (!brief && v.gates.length) {
       h += "<table class=gates><tr><th>gate</th><th>value</th><th>limit</th><th>margin</th></tr>" +
         v.gates.map((g) => `<tr class="${g.pass ? "PASS" : "FAIL"}"><td>${esc(g.gate)}</td><td class=num>${esc(g.value)}</td><td class=num>${esc(g.limit)}</td><td class=num>${esc(g.margin)}</td></tr>`).join("") + "</table>";
