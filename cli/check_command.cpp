@@ -304,10 +304,9 @@ int finish(const hs::RunResults& run, const fs::path& report_dir, const std::str
         {"results", hs::printable((report_dir / "results.json").string())},
         {"bless_command", hs::printable(accept_all)},
         {"skipped", out.skipped ? out.skipped->size() : 0},
-        {"approve_failed", to_accept.empty()
-                               ? std::string()
-                               : hs::printable(run.bless_prefix + " --failed --report " +
-                                               hs::shell_quote(report_dir.string()))}};
+        {"approve_failed", to_accept.empty() ? std::string()
+                                             : hs::printable(hs::accept_report_command(
+                                                   run.bless_prefix, report_dir))}};
     say("{}\n", summary.dump());
     std::fflush(stdout);
     return hs::exit_code(n);
@@ -337,9 +336,8 @@ int finish(const hs::RunResults& run, const fs::path& report_dir, const std::str
         n.warn ? ", warning" : "", hs::printable(accept_all));
   }
   if (!to_accept.empty() && !run.bless_prefix.empty()) {
-    say("  or review {} and accept the images it shows: {} --failed --report {}\n",
-        hs::printable(report), hs::printable(run.bless_prefix),
-        hs::printable(hs::shell_quote(report_dir.string())));
+    say("  or review {} and accept the images it shows: {}\n", hs::printable(report),
+        hs::printable(hs::accept_report_command(run.bless_prefix, report_dir)));
   }
   std::fflush(stdout);
   return hs::exit_code(n);

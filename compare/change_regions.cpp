@@ -20,29 +20,32 @@ constexpr std::size_t kShiftSamples = 20000;
 // A uniform offset larger than this (in levels) where the expected image showed the background
 // around it is content added, not a change of brightness.
 constexpr double kLargeOffset = 32;
+// What the analysis holds at most, per pixel: a state byte, a 4-byte index in its component and
+// up to 4 in the search's stack, and the scattered pixels' list.
+constexpr std::uint64_t kAnalysisBytesPerPixel = 13;
 
 struct Component {
-  std::vector<std::size_t> pixels;  // row-major indices
+  std::vector<std::uint32_t> pixels;  // row-major indices (images stay under 2^32 pixels)
   int left = 0, top = 0, right = 0, bottom = 0;
 };
 
-// 8-connected components of the changed pixels.
-std::vector<Component> components(const std::vector<std::uint8_t>& changed, int w, int h) {
+// 8-connected components of the changed pixels. `changed` (0 unchanged, 1 changed) marks the
+// pixels it has visited 2, so that the analysis holds one byte a pixel beside the indices.
+std::vector<Component> components(std::vector<std::uint8_t>& changed, int w, int h) {
   std::vector<Component> out;
-  std::vector<std::uint8_t> seen(changed.size(), 0);
-  std::vector<std::size_t> stack;
+  std::vector<std::uint32_t> stack;
   for (std::size_t start = 0; start < changed.size(); ++start) {
-    if (!changed[start] || seen[start]) continue;
+    if (changed[start] != 1) continue;
     Component c;
     c.left = c.right = int(start % std::size_t(w));
     c.top = c.bottom = int(start / std::size_t(w));
-    seen[start] = 1;
-    stack.assign(1, start);
+    changed[start] = 2;
+    stack.assign(1, std::uint32_t(start));
     while (!stack.empty()) {
-      const std::size_t i = stack.back();
+      const std::uint32_t i = stack.back();
       stack.pop_back();
       c.pixels.push_back(i);
-      const int x = int(i % std::size_t(w)), y = int(i / std::size_t(w));
+      const int x = int(i % std::uint32_t(w)), y = int(i / std::uint32_t(w));
       c.left = std::min(c.left, x), c.right = std::max(c.right, x);
       c.top = std::min(c.top, y), c.bottom = std::max(c.bottom, y);
       for (int dy = -1; dy <= 1; ++dy) {
@@ -50,7 +53,7 @@ std::vector<Component> components(const std::vector<std::uint8_t>& changed, int 
           const int xx = x + dx, yy = y + dy;
           if (xx < 0 || yy < 0 || xx >= w || yy >= h) continue;
           const std::size_t j = std::size_t(yy) * std::size_t(w) + std::size_t(xx);
-          if (changed[j] && !seen[j]) seen[j] = 1, stack.push_back(j);
+          if (changed[j] == 1) changed[j] = 2, stack.push_back(std::uint32_t(j));
         }
       }
     }
@@ -234,10 +237,12 @@ std::string ChangedRegion::text() const {
 
 std::vector<ChangedRegion> changed_regions(const RgbaImage& expected, const RgbaImage& actual,
                                            const std::vector<std::uint8_t>& ignored,
-                                           int max_regions) {
+                                           int max_regions, std::uint64_t max_bytes) {
   const int w = expected.width(), h = expected.height();
   if (w != actual.width() || h != actual.height() || w == 0 || h == 0) return {};
-  std::vector<std::uint8_t> changed(std::size_t(w) * std::size_t(h), 0);
+  const std::uint64_t n = std::uint64_t(w) * std::uint64_t(h);
+  if (n > UINT32_MAX || n > max_bytes / kAnalysisBytesPerPixel) return {};
+  std::vector<std::uint8_t> changed(n, 0);
   for (std::size_t i = 0; i < changed.size(); ++i) {
     if (!ignored.empty() && ignored[i]) continue;
     changed[i] =
@@ -250,13 +255,24 @@ std::vector<ChangedRegion> changed_regions(const RgbaImage& expected, const Rgba
   std::vector<ChangedRegion> out;
   Component scattered;  // small components and those past max_regions: one noise region
   scattered.left = w, scattered.top = h, scattered.right = -1, scattered.bottom = -1;
+  const auto is_region = [&](const Component& c, std::size_t k) {
+    return static_cast<long long>(c.pixels.size()) >= kSmallRegion && k < std::size_t(max_regions);
+  };
+  std::size_t regions = 0, scattered_pixels = 0;  // reserved at once: no doubling past the bound
   for (const Component& c : parts) {
-    if (static_cast<long long>(c.pixels.size()) >= kSmallRegion &&
-        out.size() < std::size_t(max_regions)) {
+    if (is_region(c, regions))
+      ++regions;
+    else
+      scattered_pixels += c.pixels.size();
+  }
+  scattered.pixels.reserve(scattered_pixels);
+  for (Component& c : parts) {
+    if (is_region(c, out.size())) {
       out.push_back(classify(c, changed, expected, actual));
       continue;
     }
     scattered.pixels.insert(scattered.pixels.end(), c.pixels.begin(), c.pixels.end());
+    std::vector<std::uint32_t>().swap(c.pixels);  // each index held once, not twice
     scattered.left = std::min(scattered.left, c.left),
     scattered.top = std::min(scattered.top, c.top);
     scattered.right = std::max(scattered.right, c.right);

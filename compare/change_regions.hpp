@@ -30,10 +30,13 @@ struct ChangedRegion {
 
 // The changed pixels (any channel differs) of two images of one size, as regions: the largest
 // `max_regions` by pixel count, then scattered pixels (components under 8 pixels) as one kNoise
-// region. `ignored` (width * height flags, or empty) leaves pixels out.
+// region. `ignored` (width * height flags, or empty) leaves pixels out. Nothing (no regions)
+// where the analysis would take more than `max_bytes` (13 bytes a pixel): a failing pair is
+// described within the memory limit its images were decoded under, or not at all.
 std::vector<ChangedRegion> changed_regions(const RgbaImage& expected, const RgbaImage& actual,
                                            const std::vector<std::uint8_t>& ignored = {},
-                                           int max_regions = 8);
+                                           int max_regions = 8,
+                                           std::uint64_t max_bytes = UINT64_MAX);
 
 // As results.json and `compare --json` hold them: {"kind": "shift", "text": ..., "left": ...};
 // reading takes what it knows (an unknown kind is kOther).

@@ -490,7 +490,8 @@ Comparison run(const Input& actual_in, const Input& expected_in, const Tolerance
   c.comparable = true;
   decide(t, t.resemble, c);
   // A failure says what kind of change it saw (only then: it needs both images decoded).
-  if (!c.same()) c.changes = changed_regions(expected.rgba8(), actual.rgba8(), ignored);
+  if (!c.same())
+    c.changes = changed_regions(expected.rgba8(), actual.rgba8(), ignored, 8, o.max_bytes);
   add_diff(expected, actual, t, o, std::move(ignored), c);
   return c;
 }

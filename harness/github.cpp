@@ -95,10 +95,6 @@ std::string folder_size(const fs::path& dir) {
   return fmt::format("{} file{}, {:.1f} MB", files, files == 1 ? "" : "s", double(bytes) / 1e6);
 }
 
-std::string panel(const CaseResult& c, const fs::path& report_dir) {
-  return (fs::absolute(report_dir).lexically_normal() / "index.html").string() + "#case=" + c.id;
-}
-
 }  // namespace
 
 std::string github_annotations(const RunResults& run, const fs::path& report_dir) {
@@ -108,7 +104,7 @@ std::string github_annotations(const RunResults& run, const fs::path& report_dir
     const bool error = awaits_approval(c.status) || c.status == Status::kError;
     const std::string file = annotated_file(run, c);
     const std::string where = file.empty() ? "" : "file=" + escape_property(file) + ",";
-    std::string text = c.id + ": " + c.message + " (report: " + panel(c, report_dir);
+    std::string text = c.id + ": " + c.message + " (report: " + report_panel(report_dir, c.id);
     if (awaits_approval(c.status) && !run.approve_prefix.empty())
       text += "; to accept what the report shows: " + bless_command(run.approve_prefix, {c.id});
     out += fmt::format("::{} {}title={}::{})\n", error ? "error" : "warning", where,
@@ -143,8 +139,7 @@ std::string github_step_summary(const RunResults& run, const fs::path& report_di
                      folder_size(report_dir));
   if (n.fail + n.fresh > 0 && !run.bless_prefix.empty()) {
     out += "\nTo accept what the report shows: `" +
-           cell(run.bless_prefix + " --failed --report " + shell_quote(report_dir.string())) +
-           "`\n";
+           cell(accept_report_command(run.bless_prefix, report_dir)) + "`\n";
   }
   return out + "\n";
 }

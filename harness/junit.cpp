@@ -16,8 +16,7 @@ namespace {
 // [[ATTACHMENT|path]] lines that Jenkins' and GitLab's JUnit readers turn into links.
 std::string review(const CaseResult& c, const fs::path& report_dir) {
   const fs::path dir = fs::absolute(report_dir).lexically_normal();
-  std::string out =
-      "report: " + escape_markup((dir / "index.html").string() + "#case=" + c.id) + "\n";
+  std::string out = "report: " + escape_markup(report_panel(report_dir, c.id)) + "\n";
   for (const auto& [image, rel] : c.files)
     out += "[[ATTACHMENT|" + escape_markup((dir / "cases" / rel).string()) + "]]\n";
   return out;

@@ -74,5 +74,9 @@ std::string bless_prefix(const Suite& suite);
 std::string exact_filter(const std::vector<std::string>& ids);
 // `prefix` --filter '<exact_filter(ids)>': the command that blesses exactly these cases.
 std::string bless_command(std::string_view prefix, const std::vector<std::string>& ids);
+// `prefix` --failed --report 'DIR': the command that accepts what a report shows.
+std::string accept_report_command(std::string_view prefix, const std::filesystem::path& report_dir);
+// Where a person reviews one case: the report page's panel for it, as an absolute path#case=ID.
+std::string report_panel(const std::filesystem::path& report_dir, std::string_view case_id);
 
 }  // namespace aosuite::harness

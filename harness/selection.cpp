@@ -81,6 +81,16 @@ std::string bless_command(std::string_view prefix, const std::vector<std::string
   return fmt::format("{} --filter {}", prefix, shell_quote(exact_filter(ids)));
 }
 
+std::string accept_report_command(std::string_view prefix,
+                                  const std::filesystem::path& report_dir) {
+  return fmt::format("{} --failed --report {}", prefix, shell_quote(report_dir.string()));
+}
+
+std::string report_panel(const std::filesystem::path& report_dir, std::string_view case_id) {
+  return (std::filesystem::absolute(report_dir).lexically_normal() / "index.html").string() +
+         "#case=" + std::string(case_id);
+}
+
 namespace {
 
 std::string list_command(const Suite& suite) {

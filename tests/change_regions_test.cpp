@@ -131,5 +131,18 @@ TEST(ChangeRegions, IdenticalAndIgnoredPixelsHaveNoRegion) {
   EXPECT_EQ(changed_regions(a, b).front().pixels, 1);
 }
 
+// The analysis holds 13 bytes a pixel at most, and stays within the memory it is given: a pair
+// whose analysis would not fit is left undescribed rather than allowed past the limit.
+TEST(ChangeRegions, AnalysisStaysWithinItsMemoryLimit) {
+  std::mt19937 rng(5);
+  const RgbaImage a = textured(rng);
+  RgbaImage b = copy(a);
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) put(b, x, y, 0, 0, 0);  // every pixel changed
+  const std::uint64_t need = 13 * std::uint64_t(kW) * kH;
+  EXPECT_FALSE(changed_regions(a, b, {}, 8, need).empty());
+  EXPECT_TRUE(changed_regions(a, b, {}, 8, need - 1).empty());
+}
+
 }  // namespace
 }  // namespace aosuite::comparison
