@@ -26,6 +26,8 @@ PACKAGES=(
   python3-pil
   # The Python module (python/, pybind11) and its tests and pytest plugin (tests/python).
   pybind11-dev python3-dev python3-numpy python3-pytest
+  # pgrep, for the fault trials' count of processes a killed run left (tests/faults).
+  procps
 )
 
 # OSMesa is optional (Mesa 25.1 removed it): installed where the distribution still has it, for
