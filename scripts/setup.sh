@@ -26,6 +26,8 @@ PACKAGES=(
   python3-pil
   # The Python module (python/, pybind11) and its tests and pytest plugin (tests/python).
   pybind11-dev python3-dev python3-numpy python3-pytest
+  # pip, setuptools and wheel: the module as a wheel built offline (tests/python/wheel_test.sh).
+  python3-pip python3-setuptools python3-wheel
   # pgrep, for the fault trials' count of processes a killed run left (tests/faults).
   procps
 )

@@ -136,9 +136,14 @@ class Run:
 
 
 def _aosuite_command() -> str:
-    # AOSUITE_BIN, else the aosuite on PATH, else the build this module was built with.
-    return (os.environ.get("AOSUITE_BIN") or shutil.which("aosuite")
-            or _aosuite.BUILD_AOSUITE)
+    # AOSUITE_BIN, else the aosuite on PATH, else the build this module was built with (none
+    # for a wheel).
+    found = (os.environ.get("AOSUITE_BIN") or shutil.which("aosuite")
+             or _aosuite.BUILD_AOSUITE)
+    if not found:
+        raise FileNotFoundError("no aosuite command: install the aosuite package, or set "
+                                "AOSUITE_BIN to the aosuite program")
+    return found
 
 
 def _suite_args(suite, goldens, filter, shard):
