@@ -427,10 +427,14 @@ TEST_F(ImageCases, OneRunAtATimeInAReportOrGoldensFolder) {
   for (const char* s : {"a", "b"}) {
     std::ofstream(dir_ / "s" / (std::string(s) + ".toml"))
         << "[[case]]\nname = \"slow\"\ncommand = [\"sh\", \"-c\", \"touch {suite_dir}/started; "
-           "sleep 1; cp {suite_dir}/red.png {out}/x.png\"]\noutputs = [\"x.png\"]\n";
+           "while [ ! -e {suite_dir}/go ]; do sleep 0.02; done; "
+           "cp {suite_dir}/red.png {out}/x.png\"]\noutputs = [\"x.png\"]\n";
   }
+  // The case's command holds its run until the test says go: no race with a slow machine.
+  const auto go = [&] { std::ofstream(dir_ / "s" / "go").put('1'); };
   const auto in_background = [&](const std::string& args) {
     fs::remove(dir_ / "s" / "started");
+    fs::remove(dir_ / "s" / "go");
     test::run_shell("cd " + dir_.path().string() + " && (" + aosuite_bin() + " " + args +
                         " >bg.out 2>&1 & echo $! >bg.pid) && while [ ! -e s/started ]; do sleep "
                         "0.01; done",
@@ -442,6 +446,7 @@ TEST_F(ImageCases, OneRunAtATimeInAReportOrGoldensFolder) {
   EXPECT_EQ(r.rc, 2) << r.out << r.err;
   EXPECT_NE(r.err.find("R: in use by another aosuite (pid "), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("check s/a.toml --report R"), std::string::npos) << r.err;
+  go();
   r = aosuite("check s/b.toml --report R --wait");
   EXPECT_EQ(r.rc, 1) << r.out << r.err;  // NEW, after the first run let go
   EXPECT_NE(read_text(dir_ / "bg.out").find("NEW   slow"), std::string::npos)
@@ -451,6 +456,7 @@ TEST_F(ImageCases, OneRunAtATimeInAReportOrGoldensFolder) {
   r = aosuite("bless s/b.toml --goldens G --report R2");
   EXPECT_EQ(r.rc, 2) << r.out << r.err;
   EXPECT_NE(r.err.find("G: in use by another aosuite"), std::string::npos) << r.err;
+  go();
   // Dead once it is gone or a zombie (its files, and so its lock, are released by then).
   const auto await_end = [](pid_t pid) {
     for (int i = 0; i < 1000 && ::kill(pid, 0) == 0; ++i) {
@@ -473,6 +479,7 @@ TEST_F(ImageCases, OneRunAtATimeInAReportOrGoldensFolder) {
               std::string::npos)
         << folder << ": " << r.err;
   }
+  go();
   await_end(writer);
   // One folder named for two jobs of one run is said to be that, not another aosuite.
   r = aosuite("bless s/a.toml --goldens X --report X");
@@ -482,6 +489,7 @@ TEST_F(ImageCases, OneRunAtATimeInAReportOrGoldensFolder) {
   const pid_t holder = in_background("check s/a.toml --report K");
   ASSERT_EQ(::kill(holder, SIGKILL), 0);
   await_end(holder);
+  go();
   r = aosuite("check s/a.toml --report K");
   EXPECT_EQ(r.rc, 1) << r.out << r.err;
   // A run that stops before writing (nothing selected) leaves no report folder.
