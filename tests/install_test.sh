@@ -79,6 +79,37 @@ if grep -Ei 'file=[^ ]*(libEGL|libGL|libembree|libopencv|libassimp|libOpenImageI
   exit 1
 fi
 
+# The same run in a root that holds nothing but the aosuite package and the libraries its
+# binary and plugins link (ldd's closure): no GL, EGL, Embree, assimp, OpenCV or OpenImageIO
+# library exists there at all. Run in new user, mount and pid namespaces (unshare -r).
+lib_dirs="$work/root/usr/lib/$(dpkg-architecture -qDEB_HOST_MULTIARCH)"
+lib_dirs="$lib_dirs:$lib_dirs/aosuite"
+find "$work/root" -type f \( -name '*.so*' -o -path '*/bin/*' \) -print0 |
+  xargs -0 -n1 env LD_LIBRARY_PATH="$lib_dirs" ldd |
+  awk '/=> \//{print $3} /^\t\//{print $1}' | sort -u | grep -v "^$work/root" >"$work/closure.txt"
+while read -r lib; do cp -L --parents "$lib" "$work/root/"; done <"$work/closure.txt"
+if find "$work/root" | grep -Ei '(libEGL|libGL|libembree|libopencv|libassimp|libOpenImageIO)'; then
+  echo "install_test: the scratch root holds a library of the AO bench" >&2
+  exit 1
+fi
+if unshare -r true 2>/dev/null; then
+  mkdir -p "$work/root/tmp" "$work/root/proc"
+  cp -r "$work/formats" "$work/root/formats"
+  rm -rf "$work/root/formats/report"
+  set +e
+  unshare -r -m -p -f --mount-proc --root="$work/root" --wd=/formats /usr/bin/aosuite check \
+    --actual actual --expected expected --report report >"$work/root.txt" 2>&1
+  rc=$?
+  set -e
+  grep -q '4 images: 3 unchanged, 1 changed, 0 new, 0 deleted, 0 errors' "$work/root.txt" ||
+    { cat "$work/root.txt" >&2; exit 1; }
+  [ "$rc" = 1 ]
+  echo "install_test: folder mode ran in a root of the package and $(wc -l <"$work/closure.txt") libraries"
+else
+  echo "install_test: unshare -r is refused here (no user namespaces): the scratch-root run is" \
+    "left out; the LD_DEBUG check above stands"
+fi
+
 # A C++ consumer of the installed package.
 cmake -S "$src/examples/renderer_test" -B "$work/example" -DCMAKE_PREFIX_PATH="$work/prefix" \
   >/dev/null
