@@ -302,6 +302,7 @@ int finish(const hs::RunResults& run, const fs::path& report_dir, const std::str
         {"exit_status", hs::exit_code(n)},
         {"report", hs::printable(report)},
         {"results", hs::printable((report_dir / "results.json").string())},
+        {"report_size", hs::report_size(report_dir)},
         {"bless_command", hs::printable(accept_all)},
         {"skipped", out.skipped ? out.skipped->size() : 0},
         {"approve_failed", to_accept.empty() ? std::string()
@@ -318,13 +319,14 @@ int finish(const hs::RunResults& run, const fs::path& report_dir, const std::str
         skipped_text(*out.skipped));
   }
   if (!run.cases.empty() && run.cases.front().kind == "folder") {
-    say("{} image{}: {} unchanged, {} changed, {} new, {} deleted, {} error{}{}. Report: {}\n",
+    say("{} image{}: {} unchanged, {} changed, {} new, {} deleted, {} error{}{}. Report: {} ({})\n",
         run.cases.size(), run.cases.size() == 1 ? "" : "s", n.pass, n.fail - n.deleted, n.fresh,
-        n.deleted, n.error, n.error == 1 ? "" : "s", flaky, hs::printable(report));
+        n.deleted, n.error, n.error == 1 ? "" : "s", flaky, hs::printable(report),
+        hs::report_size(report_dir));
   } else {
-    say("{} case{}: {} passed, {} failed, {} new, {} error{}{}. Report: {}\n", run.cases.size(),
-        run.cases.size() == 1 ? "" : "s", n.pass, n.fail, n.fresh, n.error, n.error == 1 ? "" : "s",
-        flaky, hs::printable(report));
+    say("{} case{}: {} passed, {} failed, {} new, {} error{}{}. Report: {} ({})\n",
+        run.cases.size(), run.cases.size() == 1 ? "" : "s", n.pass, n.fail, n.fresh, n.error,
+        n.error == 1 ? "" : "s", flaky, hs::printable(report), hs::report_size(report_dir));
   }
   print_stale(run);
   for (const hs::CaseResult& c : run.cases) {

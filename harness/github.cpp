@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "harness/escape.hpp"
+#include "harness/html_report.hpp"
 #include "harness/runner.hpp"
 
 namespace aosuite::harness {
@@ -85,16 +86,6 @@ std::string largest_difference(const CaseResult& c) {
   return out;
 }
 
-// "123 files, 4.5 MB": what a CI uploads as the report's artifact (links not followed).
-std::string folder_size(const fs::path& dir) {
-  std::uintmax_t bytes = 0, files = 0;
-  std::error_code ec;
-  for (fs::recursive_directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
-    if (it->is_regular_file(ec) && !it->is_symlink(ec)) bytes += it->file_size(ec), ++files;
-  }
-  return fmt::format("{} file{}, {:.1f} MB", files, files == 1 ? "" : "s", double(bytes) / 1e6);
-}
-
 }  // namespace
 
 std::string github_annotations(const RunResults& run, const fs::path& report_dir) {
@@ -136,7 +127,7 @@ std::string github_step_summary(const RunResults& run, const fs::path& report_di
   if (rows > 0) out += table + (more ? fmt::format("\n…and {} more.\n", more) : "") + "\n";
   out += fmt::format("Report: `{}` ({})\n",
                      cell((fs::absolute(report_dir).lexically_normal() / "index.html").string()),
-                     folder_size(report_dir));
+                     report_size(report_dir));
   if (n.fail + n.fresh > 0 && !run.bless_prefix.empty()) {
     out += "\nTo accept what the report shows: `" +
            cell(accept_report_command(run.bless_prefix, report_dir)) + "`\n";

@@ -342,4 +342,13 @@ void write_html_report(const RunResults& run, const fs::path& report_dir,
                     {reinterpret_cast<const unsigned char*>(page.data()), page.size()});
 }
 
+std::string report_size(const fs::path& dir) {
+  std::uintmax_t bytes = 0, files = 0;
+  std::error_code ec;
+  for (fs::recursive_directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    if (it->is_regular_file(ec) && !it->is_symlink(ec)) bytes += it->file_size(ec), ++files;
+  }
+  return fmt::format("{} file{}, {:.1f} MB", files, files == 1 ? "" : "s", double(bytes) / 1e6);
+}
+
 }  // namespace aosuite::harness

@@ -16,4 +16,7 @@ struct ReportOptions {
 void write_html_report(const RunResults& run, const std::filesystem::path& report_dir,
                        const ReportOptions& options = {});
 
+// "123 files, 4.5 MB": what a CI uploads as the report's artifact (links not followed).
+std::string report_size(const std::filesystem::path& report_dir);
+
 }  // namespace aosuite::harness

@@ -1292,6 +1292,12 @@ TEST_F(ImageCases, FolderModeReportsChangedNewAndDeletedAndBlessAcceptsThem) {
   EXPECT_NE(r.out.find("7 images: 3 unchanged, 2 changed, 1 new, 1 deleted, 0 errors"),
             std::string::npos)
       << r.out;
+  // The summary gives the report's size, what a CI uploads: its files, counted here.
+  int files = 0;
+  for (const auto& e : fs::recursive_directory_iterator(dir_ / "rep")) files += e.is_regular_file();
+  EXPECT_NE(r.out.find("Report: rep/index.html (" + std::to_string(files) + " files, "),
+            std::string::npos)
+      << r.out;
   EXPECT_NE(r.out.find("sub__deep_one.png  sub/deep one.png"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("deleted: only in the expected folder"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("aosuite bless --actual actual --expected expected --filter "
