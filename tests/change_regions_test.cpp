@@ -82,18 +82,21 @@ TEST_P(ChangeKinds, EachGeneratedKindIsNamed) {
 
   // A patch brighter (or darker) by the same amount in R, G and B; a patch tinted.
   const int delta = std::uniform_int_distribution<int>(3, 12)(rng) * (GetParam() % 2 ? 1 : -1);
-  RgbaImage lit = copy(base), tinted = copy(base);
+  RgbaImage lit = copy(base), tinted = copy(base), warmer = copy(base);
   for (int y = y0; y < y0 + s; ++y) {
     for (int x = x0; x < x0 + s; ++x) {
       const unsigned char* p = base.data() + 4 * (std::size_t(y) * kW + std::size_t(x));
       put(lit, x, y, p[0] + delta, p[1] + delta, p[2] + delta);
       put(tinted, x, y, p[0] + 10, p[1] - 6, p[2]);
+      put(warmer, x, y, p[0] + 24, p[1] + 8, p[2] + 4);  // every channel up, unequally
     }
   }
   r = largest(base, lit);
   EXPECT_EQ(r.kind, ChangeKind::kBrightness) << r.text();
   EXPECT_EQ(r.mean[0] > 0, delta > 0) << r.text();
   r = largest(base, tinted);
+  EXPECT_EQ(r.kind, ChangeKind::kColour) << r.text();
+  r = largest(base, warmer);
   EXPECT_EQ(r.kind, ChangeKind::kColour) << r.text();
 
   // An object that appears, or disappears, over the sky.
