@@ -160,6 +160,22 @@ TEST(Flip, IdenticalImagesGiveZeroAndMapsAreFinite) {
   }
 }
 
+// CIE L*a*b*'s f(t) turns from a cube root into a line at t = (6/29)^3, the two joining in value
+// and slope: two flat greys 1 % apart in linear luminance differ little in FLIP's colour error
+// wherever they lie, near that joint and near (6/29)^2 included. A direct check of the curve,
+// beside the oracle's pairs (a joint moved to (6/29)^2 fails both).
+TEST(Flip, NearbyDarkGreysDifferLittleWhereverLabTurnsLinear) {
+  constexpr double kDelta = 6.0 / 29.0;
+  for (const double v : {0.002, kDelta * kDelta * kDelta / 1.005, kDelta * kDelta * kDelta, 0.02,
+                         kDelta * kDelta / 1.005, kDelta * kDelta, 0.1, 0.5}) {
+    const cv::Mat a(8, 8, CV_32FC3, cv::Scalar::all(v)),
+        b(8, 8, CV_32FC3, cv::Scalar::all(v * 1.01));
+    const double mean = flip::compare(a, b, false).mean;
+    EXPECT_LT(mean, 0.05) << "linear grey " << v << " against 1 % brighter";
+    EXPECT_GT(mean, 0.0) << v;
+  }
+}
+
 TEST(Flip, DegenerateHdrInputsStayFinite) {
   cv::Mat black(5, 4, CV_32FC3, cv::Scalar::all(0)), odd = black.clone();
   odd.at<cv::Vec3f>(1, 1) = {std::nanf(""), INFINITY, -INFINITY};
