@@ -86,7 +86,8 @@ def main():
         killed += dead
         by = first_failure(t.stdout) if dead else "survived"
         seconds = time.monotonic() - start
-        rows.append(f"| {mid} | `{file}` | {why} | `{labels}` | {by} | {seconds:.0f} s |")
+        shown = labels.replace("|", "\\|")  # a Markdown table's cell
+        rows.append(f"| {mid} | `{file}` | {why} | `{shown}` | {by} | {seconds:.0f} s |")
         print(rows[-1], flush=True)
     if build(a.build).returncode != 0:
         sys.exit("the restored source does not build")
