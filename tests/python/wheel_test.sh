@@ -21,7 +21,8 @@ if ! $python -m pip wheel --no-build-isolation --no-deps --no-index -w dist ./sr
   exit 1
 fi
 whl=$(ls dist/aosuite-*.whl)
-$python -m zipfile -l "$whl" | grep -q 'aosuite/_aosuite' || { echo "no extension in $whl" >&2; exit 1; }
+$python -m zipfile -l "$whl" >listing.txt  # whole: grep -q on a pipe would cut the listing short
+grep -q 'aosuite/_aosuite' listing.txt || { echo "no extension in $whl" >&2; exit 1; }
 $python -m zipfile -e "$whl" site  # what pip install --target does, without pip's PEP 668 check
 export PYTHONPATH=$work/site
 
