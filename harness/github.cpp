@@ -125,9 +125,7 @@ std::string github_step_summary(const RunResults& run, const fs::path& report_di
                          cell(largest_difference(c)), cell(c.message));
   }
   if (rows > 0) out += table + (more ? fmt::format("\n…and {} more.\n", more) : "") + "\n";
-  out += fmt::format("Report: `{}` ({})\n",
-                     cell((fs::absolute(report_dir).lexically_normal() / "index.html").string()),
-                     report_size(report_dir));
+  out += fmt::format("Report: `{}` ({})\n", cell(report_page(report_dir)), report_size(report_dir));
   if (n.fail + n.fresh > 0 && !run.bless_prefix.empty()) {
     out += "\nTo accept what the report shows: `" +
            cell(accept_report_command(run.bless_prefix, report_dir)) + "`\n";

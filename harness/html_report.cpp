@@ -15,6 +15,7 @@
 #include "harness/case_kind.hpp"
 #include "harness/escape.hpp"
 #include "harness/report_images.hpp"
+#include "harness/runner.hpp"
 
 namespace aosuite::harness {
 
@@ -274,10 +275,10 @@ void write_html_report(const RunResults& run, const fs::path& report_dir,
   }
 
   const Counts n = count(run);
-  std::string approve_failed = run.approve_prefix;
-  if (const std::size_t at = approve_failed.find(" --from-report "); at != std::string::npos) {
-    approve_failed.replace(at, 15, " --failed ");
-  }
+  const std::string approve_failed =
+      run.approve_prefix.empty()
+          ? std::string()
+          : accept_report_command(run.bless_prefix, report_dir.lexically_normal());
   const nlohmann::json meta = {{"approve", printable(run.approve_prefix)},
                                {"approve_failed", printable(approve_failed)}};
   std::string body = fmt::format(

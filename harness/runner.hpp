@@ -76,6 +76,8 @@ std::string exact_filter(const std::vector<std::string>& ids);
 std::string bless_command(std::string_view prefix, const std::vector<std::string>& ids);
 // `prefix` --failed --report 'DIR': the command that accepts what a report shows.
 std::string accept_report_command(std::string_view prefix, const std::filesystem::path& report_dir);
+// The report's page, as an absolute path.
+std::string report_page(const std::filesystem::path& report_dir);
 // Where a person reviews one case: the report page's panel for it, as an absolute path#case=ID.
 std::string report_panel(const std::filesystem::path& report_dir, std::string_view case_id);
 

@@ -86,9 +86,12 @@ std::string accept_report_command(std::string_view prefix,
   return fmt::format("{} --failed --report {}", prefix, shell_quote(report_dir.string()));
 }
 
+std::string report_page(const std::filesystem::path& report_dir) {
+  return (std::filesystem::absolute(report_dir).lexically_normal() / "index.html").string();
+}
+
 std::string report_panel(const std::filesystem::path& report_dir, std::string_view case_id) {
-  return (std::filesystem::absolute(report_dir).lexically_normal() / "index.html").string() +
-         "#case=" + std::string(case_id);
+  return report_page(report_dir) + "#case=" + std::string(case_id);
 }
 
 namespace {
