@@ -12,7 +12,7 @@ namespace aosuite::renderer {
 namespace {
 
 constexpr int kLevels = 6;  // level 0 and MAX_MIP_LEVEL = 5 minified levels (sao_pyramid.glsl)
-constexpr int kGroup = 8;   // sao_minify.comp's workgroup side
+constexpr int kGroup = 8;   // sao_pyramid.comp's workgroup side
 
 GLuint groups(int n) { return static_cast<GLuint>((n + kGroup - 1) / kGroup); }
 
@@ -20,26 +20,17 @@ class SaoPass final : public AoPass {
  public:
   explicit SaoPass(Pipeline pipeline)
       : pipeline_(pipeline),
-        minify_(make_program({"sao_minify.comp"})),
+        pyramid_(make_program({"sao_pyramid.comp"})),
         ao_(make_ao_program(pipeline, "sao")) {}
 
   std::vector<PassTimer> run(const GBuffer& g, const Camera& camera, const AoParams& params,
                              const AoTarget& out) override {
     if (g.width != width_ || g.height != height_) allocate(g.width, g.height);
     PassTimer pyramid_timer("sao_pyramid");
-    // Level 0 is the G-buffer's linear depth, copied into the buffer by the driver.
-    glBindBuffer(GL_PIXEL_PACK_BUFFER, pyramid_.get());
-    glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glGetTextureImage(g.depth.get(), 0, GL_RED, GL_FLOAT, level_bytes(0), nullptr);
-    glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, pyramid_.get());
-    set_level_uniforms(minify_.get());
-    glUseProgram(minify_.get());
-    for (int level = 1; level < levels_; ++level) {
-      glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);  // reads the level below
-      glProgramUniform1i(minify_.get(), glGetUniformLocation(minify_.get(), "u_level"), level);
-      glDispatchCompute(groups(size(level)[0]), groups(size(level)[1]), 1);
-    }
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, pyramid_buffer_.get());
+    set_level_uniforms(pyramid_.get());
+    bind_textures(pyramid_.get(), {{"u_depth", g.depth.get()}});
+    glDispatchCompute(groups(width_), groups(height_), 1);  // every level at once
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     pyramid_timer.stop();
 
@@ -74,7 +65,7 @@ class SaoPass final : public AoPass {
       offsets_[static_cast<std::size_t>(level)] = bytes / static_cast<GLsizei>(sizeof(float));
       bytes += level_bytes(level);
     }
-    pyramid_ = make_buffer(nullptr, static_cast<std::size_t>(bytes));
+    pyramid_buffer_ = make_buffer(nullptr, static_cast<std::size_t>(bytes));
   }
 
   void set_level_uniforms(GLuint program) const {
@@ -88,9 +79,9 @@ class SaoPass final : public AoPass {
   }
 
   Pipeline pipeline_;
-  Program minify_, ao_;
+  Program pyramid_, ao_;
   AoUniformBuffer uniforms_;
-  Buffer pyramid_;  // sao_pyramid.glsl's layout
+  Buffer pyramid_buffer_;  // sao_pyramid.glsl's layout
   std::array<GLint, kLevels> offsets_{};
   int width_ = 0, height_ = 0, levels_ = 1;
 };

@@ -12,7 +12,7 @@
 
 const int kLogMaxOffset = 3;
 
-// The full-resolution pixel whose depth sao_minify.comp kept for texel q of level m. Each
+// The full-resolution pixel whose depth sao_pyramid.comp kept for texel q of level m. Each
 // level keeps texel 2q + (q.y & 1, q.x & 1) of the level below, so going down the offsets
 // alternate between (b.y, b.x) and (b.x, b.y), b = q & 1: a closed form (a loop over the
 // levels cost a fifth of the pass on llvmpipe).
