@@ -6,10 +6,14 @@
 // costs, on a GPU as its milliseconds.
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
+#include <cmath>
 #include <map>
 #include <string>
+#include <vector>
 
 #include "bench/bench_main.hpp"
+#include "renderer/passes/gbuffer_pass.hpp"
 #include "renderer/renderer.hpp"
 #include "renderer/scene/scene.hpp"
 
@@ -79,6 +83,78 @@ void BM_MostlySky(benchmark::State& state) {  // saving: background pixels skip 
   up.target = up.eye + glm::vec3(0.2f, 1, 0);  // looking up past the roofs
   run(state, village(), up, settings(rd::Technique::kAlchemy, 640, 360));
 }
+
+// The G-buffer two ways (issue 44): the full pass (linear depth, normals and albedo drawn by a
+// fragment shader) against XeGTAO's depth-only rasterisation plus a compute pass that
+// reconstructs depth and normals. Counters: each part's GPU time, and for depth_only how far
+// its normals turn from the rasterised ones (mean and 95th percentile, degrees, geometry
+// pixels), the accuracy half of the question.
+std::vector<glm::vec4> normals(const rd::GBuffer& g) {
+  std::vector<glm::vec4> n(static_cast<std::size_t>(g.width) * static_cast<std::size_t>(g.height));
+  rd::glGetTextureImage(g.normal.get(), 0, GL_RGBA, GL_FLOAT,
+                        static_cast<GLsizei>(n.size() * sizeof(glm::vec4)), n.data());
+  return n;
+}
+
+void normal_error_counters(benchmark::State& state, const std::vector<glm::vec4>& raster,
+                           const std::vector<glm::vec4>& rebuilt) {
+  std::vector<double> degrees;
+  for (std::size_t i = 0; i < raster.size(); ++i) {
+    if (glm::dot(glm::vec3(raster[i]), glm::vec3(raster[i])) < 0.5f) continue;  // sky
+    // atan2, not acos of the dot product: RGBA16F normals are unit only to about 1e-3, which
+    // acos reads as 2 degrees.
+    const glm::vec3 a(raster[i]), b(rebuilt[i]);
+    degrees.push_back(glm::degrees(std::atan2(glm::length(glm::cross(a, b)), glm::dot(a, b))));
+  }
+  if (degrees.empty()) return;
+  double sum = 0;
+  for (double d : degrees) sum += d;
+  const auto p95 = degrees.begin() + static_cast<std::ptrdiff_t>(degrees.size() * 95 / 100);
+  std::nth_element(degrees.begin(), p95, degrees.end());
+  state.counters["normal_mean_deg"] = sum / static_cast<double>(degrees.size());
+  state.counters["normal_p95_deg"] = *p95;
+}
+
+void BM_GBuffer(benchmark::State& state, bool depth_only) {
+  const auto w = static_cast<int>(state.range(0)), h = w * 9 / 16;
+  bench_renderer();  // the GL context
+  const rd::GpuScene scene(village());
+  const rd::Camera camera = rd::make_camera(village().views[0], w, h);
+  const rd::GBuffer g = rd::make_gbuffer(w, h);
+  rd::GBufferPass full;
+  rd::DepthGBufferPass depth;
+  std::map<std::string, double> pass_ms;
+  for (int warm_up = 0; warm_up < 2; ++warm_up) {
+    full.run(scene, camera, g);
+    if (depth_only) depth.run(scene, camera, g);
+  }
+  rd::glFinish();
+  for (auto _ : state) {
+    std::vector<rd::PassTimer> timers;
+    if (depth_only) {
+      timers = depth.run(scene, camera, g);
+    } else {
+      timers.emplace_back("gbuffer");
+      full.run(scene, camera, g);
+      timers.back().stop();
+    }
+    for (const rd::PassTimer& t : timers) pass_ms[t.read().pass] += t.read().gpu_ms;
+  }
+  for (const auto& [pass, ms] : pass_ms) {
+    state.counters[pass + "_ms"] = ms / static_cast<double>(state.iterations());
+  }
+  if (depth_only) {
+    full.run(scene, camera, g);
+    const std::vector<glm::vec4> raster = normals(g);
+    depth.run(scene, camera, g);
+    normal_error_counters(state, raster, normals(g));
+  }
+}
+BENCHMARK_CAPTURE(BM_GBuffer, full, false)->Arg(1920)->Arg(3840)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_GBuffer, depth_only, true)
+    ->Arg(1920)
+    ->Arg(3840)
+    ->Unit(benchmark::kMillisecond);
 
 // One frame benchmark per registered technique (renderer/technique.hpp) and pipeline,
 // BM_Frame/TECHNIQUE/PIPELINE/WIDTH, so a new technique is measured without an edit here. PMI's

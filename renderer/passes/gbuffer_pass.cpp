@@ -39,11 +39,11 @@ GpuScene::GpuScene(const Scene& scene) : mesh_(upload(scene)) {}
 
 GBufferPass::GBufferPass() : program_(make_program({"gbuffer.vert", "gbuffer.frag"})) {}
 
-void GBufferPass::run(const GpuScene& scene, const Camera& camera, const GBuffer& g) const {
-  glBindFramebuffer(GL_FRAMEBUFFER, g.fb.get());
+namespace {
+// Clears the reversed-Z depth buffer to 0 (infinitely far) and sets the depth test for it.
+void begin_scene_depth(GLuint framebuffer, const GBuffer& g) {
+  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
   glViewport(0, 0, g.width, g.height);
-  const float zero[4] = {0, 0, 0, 0};
-  for (GLint i = 0; i < 3; ++i) glClearBufferfv(GL_COLOR, i, zero);
   glDepthMask(GL_TRUE);       // geometry-only passes turn depth writes off
   const float far_depth = 0;  // reversed Z: 0 is infinitely far
   glClearBufferfv(GL_DEPTH, 0, &far_depth);
@@ -51,11 +51,46 @@ void GBufferPass::run(const GpuScene& scene, const Camera& camera, const GBuffer
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_GREATER);
   glDisable(GL_CULL_FACE);  // two-sided: cameras inside geometry still see surfaces
+}
+}  // namespace
+
+void GBufferPass::run(const GpuScene& scene, const Camera& camera, const GBuffer& g) const {
+  begin_scene_depth(g.fb.get(), g);
+  const float zero[4] = {0, 0, 0, 0};
+  for (GLint i = 0; i < 3; ++i) glClearBufferfv(GL_COLOR, i, zero);
   const GLuint p = program_.get();
   glUseProgram(p);
   set_view_projection(p, camera);
   scene.draw();
   check_gl("G-buffer pass");
+}
+
+DepthGBufferPass::DepthGBufferPass()
+    : raster_(make_program({"gbuffer.vert"})),
+      reconstruct_(make_pixel_program("depth_gbuffer.comp")) {}
+
+std::vector<PassTimer> DepthGBufferPass::run(const GpuScene& scene, const Camera& camera,
+                                             const GBuffer& g) {
+  if (framebuffer_zbuffer_ != g.zbuffer.get()) {
+    depth_only_ = make_framebuffer({}, g.zbuffer.get());
+    framebuffer_zbuffer_ = g.zbuffer.get();
+  }
+  std::vector<PassTimer> times;
+  times.emplace_back("gbuffer_depth");
+  begin_scene_depth(depth_only_.get(), g);
+  glUseProgram(raster_.get());
+  set_view_projection(raster_.get(), camera);
+  scene.draw();
+  times.back().stop();
+  times.emplace_back("gbuffer_normals");
+  const GLuint p = reconstruct_.get();
+  set_camera_uniforms(p, camera);
+  glProgramUniform1f(p, glGetUniformLocation(p, "u_near"), camera.projection[3][2]);
+  bind_textures(p, {{"u_zbuffer", g.zbuffer.get()}});
+  dispatch_pixels(p, {{g.depth.get(), GL_R32F}, {g.normal.get(), GL_RGBA16F}}, g.width, g.height);
+  times.back().stop();
+  check_gl("depth-only G-buffer pass");
+  return times;
 }
 
 }  // namespace aosuite::renderer

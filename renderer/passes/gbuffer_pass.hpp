@@ -1,6 +1,8 @@
 // Pass 1: rasterise the scene into the G-buffer (linear depth, view normals, albedo).
 #pragma once
 
+#include <vector>
+
 #include "renderer/frame.hpp"
 
 namespace aosuite::renderer {
@@ -23,6 +25,23 @@ class GBufferPass {
 
  private:
   Program program_;
+};
+
+// XeGTAO's G-buffer: the scene rasterised into the depth buffer alone (no fragment shader,
+// no colour targets), then one compute dispatch that writes linear depth and normals
+// reconstructed from depth (depth_gbuffer.comp) into `target`; albedo is left as it was.
+// Issue 44 asks whether this is cheaper than GBufferPass on a GPU whose fragment stage is
+// slow, and as accurate: render_bench's BM_GBuffer/depth_only measures both.
+class DepthGBufferPass {
+ public:
+  DepthGBufferPass();
+  // Times the rasterisation and the reconstruction apart, in that order.
+  std::vector<PassTimer> run(const GpuScene& scene, const Camera& camera, const GBuffer& target);
+
+ private:
+  Program raster_, reconstruct_;
+  Framebuffer depth_only_;
+  GLuint framebuffer_zbuffer_ = 0;  // the depth texture depth_only_ was made for
 };
 
 }  // namespace aosuite::renderer

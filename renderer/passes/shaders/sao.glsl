@@ -27,19 +27,7 @@ vec3 position_at(ivec2 q, vec2 size) {
   return z > 0.0 ? view_position(vec2(q) + 0.5, size, z) : vec3(0.0);
 }
 
-// Normal from depth: per axis the neighbour difference of smaller length (gl_ssao's
-// "MinDiff"), so a depth edge on one side does not tilt the normal.
-vec3 depth_normal(ivec2 p, vec3 c, vec2 size) {
-  ivec2 hi = ivec2(size) - 1;
-  vec3 r = position_at(min(p + ivec2(1, 0), hi), size) - c;
-  vec3 l = c - position_at(max(p - ivec2(1, 0), ivec2(0)), size);
-  vec3 t = position_at(min(p + ivec2(0, 1), hi), size) - c;
-  vec3 b = c - position_at(max(p - ivec2(0, 1), ivec2(0)), size);
-  vec3 dx = dot(r, r) < dot(l, l) ? r : l;
-  vec3 dy = dot(t, t) < dot(b, b) ? t : b;
-  vec3 n = safe_normalize(cross(dx, dy));
-  return dot(n, -c) < 0.0 ? -n : n;
-}
+#include "depth_normal.glsl"
 
 float estimate_ao(ivec2 p) {
   vec2 size = vec2(u_size);

@@ -1,0 +1,96 @@
+// The depth-only G-buffer (issue 44's measurement, DepthGBufferPass): its linear depth and its
+// normals reconstructed from depth must match the full G-buffer pass's wherever the surface
+// is smooth, so render_bench's cost comparison compares like with like.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "renderer/passes/gbuffer_pass.hpp"
+#include "renderer/renderer.hpp"
+
+namespace aosuite::renderer {
+namespace {
+
+template <typename T>
+std::vector<T> read(const Texture& t, GLenum format, int w, int h) {
+  std::vector<T> v(static_cast<std::size_t>(w) * static_cast<std::size_t>(h));
+  glGetTextureImage(t.get(), 0, format, GL_FLOAT, static_cast<GLsizei>(v.size() * sizeof(T)),
+                    v.data());
+  return v;
+}
+
+// The angle between two normals stored as RGBA16F, whose lengths are 1 only to about 1e-3:
+// atan2 of |a x b| and a . b, since acos of their dot product would read that as 2 degrees.
+// A missing normal (zero) is 180 degrees from any.
+double angle_degrees(glm::vec3 a, glm::vec3 b) {
+  if (glm::dot(a, a) < 0.5f || glm::dot(b, b) < 0.5f) return 180;
+  return glm::degrees(std::atan2(double(glm::length(glm::cross(a, b))), double(glm::dot(a, b))));
+}
+
+struct Comparison {
+  std::vector<double> degrees;  // normal turn per geometry pixel
+  double worst_depth = 0;       // relative linear-depth difference
+  int sky_mismatches = 0;
+};
+
+Comparison compare_gbuffers(const char* scene_name, std::size_t view, int w, int h) {
+  static Renderer context;  // makes a GL context current
+  (void)context;
+  const Scene scene = builtin_scene(scene_name);
+  const GpuScene gpu(scene);
+  const Camera camera = make_camera(scene.views.at(view), w, h);
+  const GBuffer g = make_gbuffer(w, h);
+  GBufferPass full;
+  full.run(gpu, camera, g);
+  const auto depth = read<float>(g.depth, GL_RED, w, h);
+  const auto normal = read<glm::vec4>(g.normal, GL_RGBA, w, h);
+  DepthGBufferPass depth_only;
+  depth_only.run(gpu, camera, g);
+  const auto depth2 = read<float>(g.depth, GL_RED, w, h);
+  const auto normal2 = read<glm::vec4>(g.normal, GL_RGBA, w, h);
+  Comparison c;
+  for (std::size_t i = 0; i < depth.size(); ++i) {
+    EXPECT_TRUE(std::isfinite(depth2[i]) && std::isfinite(normal2[i].x) &&
+                std::isfinite(normal2[i].y) && std::isfinite(normal2[i].z));
+    if ((depth[i] > 0) != (depth2[i] > 0)) ++c.sky_mismatches;
+    if (depth[i] <= 0 || depth2[i] <= 0) continue;
+    c.worst_depth = std::max(c.worst_depth, std::abs(depth2[i] - depth[i]) / double(depth[i]));
+    c.degrees.push_back(angle_degrees(glm::vec3(normal[i]), glm::vec3(normal2[i])));
+  }
+  return c;
+}
+
+double quantile(std::vector<double> v, double q) {
+  auto at = v.begin() + static_cast<std::ptrdiff_t>(static_cast<double>(v.size() - 1) * q);
+  std::nth_element(v.begin(), at, v.end());
+  return *at;
+}
+
+// A plane seen at a slant is one flat surface: every reconstructed normal is its normal, up to
+// the depth buffer's float rounding, the image's border pixels too (they have a neighbour on
+// one side only).
+TEST(DepthGBuffer, PlaneNormalsAndDepthMatchTheRasterisedOnes) {
+  const Comparison c = compare_gbuffers("plane", 0, 160, 90);
+  ASSERT_GT(c.degrees.size(), 1000u);
+  EXPECT_EQ(c.sky_mismatches, 0);
+  EXPECT_LT(c.worst_depth, 1e-5);
+  EXPECT_LT(quantile(c.degrees, 1.0), 0.1);
+}
+
+// On curved and creased geometry only silhouettes and creases may turn: most pixels stay
+// within a degree (facets of the tessellated spheres), and the median far below it.
+TEST(DepthGBuffer, CurvedSceneNormalsStayCloseAwayFromEdges) {
+  for (const char* name : {"spheres", "corner", "village"}) {
+    const Comparison c = compare_gbuffers(name, 0, 320, 180);
+    ASSERT_GT(c.degrees.size(), 1000u) << name;
+    EXPECT_EQ(c.sky_mismatches, 0) << name;
+    EXPECT_LT(c.worst_depth, 1e-5) << name;
+    EXPECT_LT(quantile(c.degrees, 0.5), 1.0) << name;
+    EXPECT_LT(quantile(c.degrees, 0.9), 5.0) << name;
+  }
+}
+
+}  // namespace
+}  // namespace aosuite::renderer
