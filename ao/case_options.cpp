@@ -43,6 +43,7 @@ rd::RenderSettings case_settings(const CaseOptions& o) {
   s.technique = rd::parse_technique(o.technique);
   s.params = technique_params(s.technique, o.preset, o.samples, o.radius, o.params);
   if (!o.pipeline.empty()) s.pipeline = rd::parse_pipeline(o.pipeline);
+  s.gbuffer = rd::parse_gbuffer(o.gbuffer);
   return s;
 }
 

@@ -19,6 +19,7 @@ struct CaseOptions {
   std::vector<std::string> params;  // KEY=VALUE
   std::string preset;    // a preset file or built-in name (ao/preset.hpp), applied before the above
   std::string pipeline;  // fragment|compute; empty: the device's default
+  std::string gbuffer = "full";  // full|depth
 };
 
 // The render settings they name (all outputs, as RenderSettings defaults); throws

@@ -27,7 +27,13 @@ ErrorStudy measure_error_study(const CaseOptions& c, const std::string& variant,
   s.pipeline = img.pipeline;  // the one that ran, for the JSON
   ref::ReferenceCache cache(scene, ref::default_cache_dir());
   const rd::Camera camera = rd::make_camera(view, s.width, s.height);
-  e.reference = cache.get(camera, img.depth, img.normal, rs);
+  // The reference is traced over the full G-buffer, the true surfaces, whichever G-buffer the
+  // technique read: a depth-only one's reconstructed normals would move the yardstick too.
+  const rd::Images surfaces =
+      s.gbuffer == rd::GBufferKind::kFull
+          ? img
+          : renderer.render(scene, view, rd::gbuffer_settings(s.width, s.height));
+  e.reference = cache.get(camera, surfaces.depth, surfaces.normal, rs);
   e.reference_cached = cache.last_was_cached(), e.reference_seconds = cache.last_seconds();
   e.ao = img.ao, e.depth = img.depth;
   e.error = ref::measure_error(img.ao, e.reference, img.depth, {8, 0.05f, rs.rays});
@@ -46,6 +52,7 @@ nlohmann::ordered_json error_study_json(const ErrorStudy& e, const CaseOptions& 
   j["intensity"] = s.params.intensity;
   j["params"] = params_json(s.technique, s.params);
   if (s.pipeline) j["pipeline"] = rd::pipeline_name(*s.pipeline);
+  j["gbuffer"] = rd::gbuffer_name(s.gbuffer);
   j["reference"] = {{"variant", variant},
                     {"rays", rs.rays},
                     {"radius", rs.radius},

@@ -65,11 +65,15 @@ def main():
             device = f"{j['gl_device']}: {j['gl']}"
             pipeline = j["pipeline"]
             ms = j["median_ms"]
-            ao = sum(v for k, v in ms.items() if k not in ("gbuffer", "blur", "blend", "frame_wall"))
-            rows.append((technique, ms.get("gbuffer", 0), ao, ms.get("blur", 0),
+            # The G-buffer is one pass or, depth-only, two (gbuffer, gbuffer_normals).
+            gbuffer = sum(v for k, v in ms.items() if k.startswith("gbuffer"))
+            ao = sum(v for k, v in ms.items()
+                     if not k.startswith("gbuffer") and k not in ("blur", "blend", "frame_wall"))
+            rows.append((technique, gbuffer, ao, ms.get("blur", 0),
                          ms.get("blend", 0), ms["frame_wall"],
                          ", ".join(f"{k} {v:.3f}" for k, v in ms.items()
-                                   if k not in ("gbuffer", "blur", "blend", "frame_wall", "ao"))))
+                                   if not k.startswith("gbuffer")
+                                   and k not in ("blur", "blend", "frame_wall", "ao"))))
         print(f"\n{args.scene} {width}x{height}, {pipeline} pipeline, median of {args.runs} frames, "
               f"{device}\n")
         print("| technique | G-buffer ms | AO ms | blur ms | blend ms | frame wall ms | AO sub-passes |")

@@ -29,6 +29,10 @@ void add_case_options(CLI::App* cmd, ao::CaseOptions& o) {
                   "or a built-in preset (tuned), applied before --samples, --radius and --param");
   cmd->add_option("--param", o.params, "KEY=VALUE, repeatable; keys:" + keys);
   add_pipeline_option(cmd, o.pipeline);
+  cmd->add_option("--gbuffer", o.gbuffer,
+                  "full|depth: the G-buffer rasterised whole, or depth alone with normals "
+                  "reconstructed from it (XeGTAO's; untextured images)")
+      ->capture_default_str();
 }
 
 void add_pipeline_option(CLI::App* cmd, std::string& pipeline) {

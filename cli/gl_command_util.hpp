@@ -12,7 +12,8 @@
 
 namespace aosuite::cli {
 
-// --scene, --view, --technique, --width, --height, --samples, --radius, --param, --pipeline:
+// --scene, --view, --technique, --width, --height, --samples, --radius, --param, --pipeline,
+// --gbuffer:
 // what `render` and `error` both take.
 void add_case_options(CLI::App* cmd, ao::CaseOptions& o);
 

@@ -57,6 +57,7 @@ int run_render(const RenderArgs& a) {
   j["gl"] = renderer.gl_description();
   j["gl_device"] = renderer.gl_source();
   j["pipeline"] = rd::pipeline_name(img.pipeline);
+  j["gbuffer"] = rd::gbuffer_name(s.gbuffer);
   j["runs"] = a.runs;
   // Each pass's GPU time (GL_TIME_ELAPSED), and the frame's wall time from the first pass's
   // submission to the last one's end (read-back excluded).

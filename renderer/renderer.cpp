@@ -49,7 +49,10 @@ Outputs parse_outputs(const std::string& csv) {
 struct Renderer::State {
   std::unique_ptr<GlContext> context = make_gl_context(gl_choice());
   GBufferPass gbuffer_pass;
-  BlurPass blur_pass;
+  DepthGBufferPass depth_gbuffer_pass;
+  // The blur's kernel suits the device: runs of pixels on a CPU rasteriser, shared-memory
+  // tiles on a GPU (blur_pass.hpp). Made on first use, when the context can name its device.
+  std::unique_ptr<BlurPass> blur_pass;
   // Per pipeline, compiled on first use.
   std::map<Pipeline, std::unique_ptr<BlendPass>> blend_passes;
   std::map<std::pair<Technique, Pipeline>, std::unique_ptr<AoPass>> ao_passes;
@@ -77,6 +80,14 @@ struct Renderer::State {
     auto& pass = ao_passes[{t, p}];
     if (!pass) pass = make_ao_pass(t, p);
     return *pass;
+  }
+
+  BlurPass& blur(Pipeline device_default) {
+    if (!blur_pass) {
+      blur_pass = std::make_unique<BlurPass>(
+          device_default == Pipeline::kCompute ? BlurKernel::kTiles : BlurKernel::kRuns);
+    }
+    return *blur_pass;
   }
 
   const BlendPass& blend_pass(Pipeline p) {
@@ -154,10 +165,17 @@ Images Renderer::render(const Scene& scene, const View& view, const RenderSettin
   glFinish();  // the frame's wall time starts with an idle pipeline
   const double start_ms = now_ms();
 
-  PassTimer gbuffer_timer("gbuffer");
-  st.gbuffer_pass.run(gpu_scene, camera, st.gbuffer);
-  gbuffer_timer.stop();
-  timers.push_back(std::move(gbuffer_timer));
+  if (s.gbuffer == GBufferKind::kDepth) {
+    const float albedo[4] = {0.8f, 0.8f, 0.8f, 1};  // the depth pass has no colour
+    glClearTexImage(st.gbuffer.albedo.get(), 0, GL_RGBA, GL_FLOAT, albedo);
+    for (PassTimer& t : st.depth_gbuffer_pass.run(gpu_scene, camera, st.gbuffer))
+      timers.push_back(std::move(t));
+  } else {
+    PassTimer gbuffer_timer("gbuffer");
+    st.gbuffer_pass.run(gpu_scene, camera, st.gbuffer);
+    gbuffer_timer.stop();
+    timers.push_back(std::move(gbuffer_timer));
+  }
 
   const bool want_ao = s.outputs.needs_ao();
   if (want_ao) {
@@ -172,7 +190,7 @@ Images Renderer::render(const Scene& scene, const View& view, const RenderSettin
         timers.push_back(std::move(t));
     }
     if (s.params.blur != Blur::kNone) {
-      timers.push_back(st.blur_pass.run(st.gbuffer, s.params.blur, st.ao.get()));
+      timers.push_back(st.blur(default_pipeline()).run(st.gbuffer, s.params.blur, st.ao.get()));
     }
   }
   if (s.outputs.no_ao || s.outputs.with_ao || s.outputs.ao_only) {

@@ -30,6 +30,7 @@ struct RenderSettings {
   // Fragment draws or compute dispatches for the screen-space passes; unset: the device's
   // default (Renderer::default_pipeline). The images are the same either way.
   std::optional<Pipeline> pipeline;
+  GBufferKind gbuffer = GBufferKind::kFull;
 };
 
 // The depth and view-space normal alone, no AO and no images: the G-buffer a ray-traced

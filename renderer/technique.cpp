@@ -153,6 +153,15 @@ std::string_view pipeline_name(Pipeline p) {
   return p == Pipeline::kCompute ? "compute" : "fragment";
 }
 
+GBufferKind parse_gbuffer(std::string_view name) {
+  if (name == "full") return GBufferKind::kFull;
+  if (name == "depth") return GBufferKind::kDepth;
+  throw std::invalid_argument("unknown G-buffer '" + std::string(name) +
+                              "' (expected full or depth)");
+}
+
+std::string_view gbuffer_name(GBufferKind g) { return g == GBufferKind::kDepth ? "depth" : "full"; }
+
 std::string_view blur_name(Blur b) {
   switch (b) {
     case Blur::kNone:

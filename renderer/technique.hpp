@@ -26,6 +26,14 @@ enum class Blur { kNone, kGaussian, kBilateral };
 enum class Pipeline { kFragment, kCompute };
 Pipeline parse_pipeline(std::string_view name);  // fragment|compute
 std::string_view pipeline_name(Pipeline p);
+
+// What the G-buffer pass rasterises. Full: depth, normals and albedo, a fragment shader per
+// pixel. Depth: the depth buffer alone, then one dispatch reconstructs linear depth and normals
+// from it (XeGTAO's input); it has no colour, so the lit images are untextured (albedo 0.8).
+// On an H200 the depth-only G-buffer costs a fourth of the full one (bench/README.md).
+enum class GBufferKind { kFull, kDepth };
+GBufferKind parse_gbuffer(std::string_view name);  // full|depth
+std::string_view gbuffer_name(GBufferKind g);
 Blur parse_blur(std::string_view name);  // none|gaussian|bilateral
 std::string_view blur_name(Blur b);
 

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "renderer/passes/gbuffer_pass.hpp"
@@ -89,6 +90,46 @@ TEST(DepthGBuffer, CurvedSceneNormalsStayCloseAwayFromEdges) {
     EXPECT_LT(c.worst_depth, 1e-5) << name;
     EXPECT_LT(quantile(c.degrees, 0.5), 1.0) << name;
     EXPECT_LT(quantile(c.degrees, 0.9), 5.0) << name;
+  }
+}
+
+TEST(DepthGBuffer, NamesParseBack) {
+  for (GBufferKind g : {GBufferKind::kFull, GBufferKind::kDepth})
+    EXPECT_EQ(parse_gbuffer(gbuffer_name(g)), g);
+  EXPECT_THROW(parse_gbuffer("normals"), std::invalid_argument);
+}
+
+// A frame over the depth-only G-buffer: its two passes are timed as the G-buffer's, its AO
+// stays close to the full G-buffer's for every screen-space technique (the estimators see the
+// same depths and nearly the same normals), with no NaN, and its lit images carry no colour.
+TEST(DepthGBuffer, FramesOverItMatchTheFullGBuffersAo) {
+  Renderer& r = []() -> Renderer& {
+    static Renderer renderer;
+    return renderer;
+  }();
+  const Scene village = builtin_scene("village");
+  for (const TechniqueInfo& t : techniques()) {
+    if (!t.make_compute_pass) continue;  // screen-space techniques only
+    RenderSettings s;
+    s.width = 160, s.height = 90, s.technique = t.id, s.params = default_params(t.id);
+    const Images full = r.render(village, village.views[0], s);
+    s.gbuffer = GBufferKind::kDepth;
+    const Images depth = r.render(village, village.views[0], s);
+    ASSERT_EQ(cv::countNonZero(depth.ao != depth.ao), 0) << t.name << ": NaN";
+    double sum = 0;
+    for (int i = 0; i < full.ao.rows * full.ao.cols; ++i) {
+      const double d = full.ao.ptr<float>()[i] - depth.ao.ptr<float>()[i];
+      sum += d * d;
+    }
+    EXPECT_LT(std::sqrt(sum / (full.ao.rows * full.ao.cols)), 0.03) << t.name;
+    std::vector<std::string> passes;
+    for (const PassTime& p : depth.times) passes.push_back(p.pass);
+    EXPECT_EQ(passes.at(0), "gbuffer") << t.name;
+    EXPECT_EQ(passes.at(1), "gbuffer_normals") << t.name;
+    // Untextured: every geometry pixel of no_ao is grey (R = G = B).
+    cv::Mat channels[4];
+    cv::split(depth.no_ao, channels);
+    EXPECT_EQ(cv::countNonZero((channels[0] != channels[1]) & (depth.depth > 0)), 0) << t.name;
   }
 }
 

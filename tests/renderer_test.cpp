@@ -325,12 +325,21 @@ class BlurFixture {
   static float& at(Plane& p, int x, int y) { return p[index(x, y)]; }
   static float at(const Plane& p, int x, int y) { return p[index(x, y)]; }
 
+  // Blurs with both kernels (blur.comp's runs for a CPU rasteriser, blur_tile.comp's tiles for
+  // a GPU), which must agree to the bit, and returns the result.
   Plane blur(Blur kind, const Plane& ao, const Plane& depth) {
+    const Plane runs = blur(runs_, kind, ao, depth), tiles = blur(tiles_, kind, ao, depth);
+    EXPECT_EQ(runs, tiles) << blur_name(kind);
+    return runs;
+  }
+
+ private:
+  static Plane blur(BlurPass& pass, Blur kind, const Plane& ao, const Plane& depth) {
     GBuffer g = make_gbuffer(kSize, kSize);
     glTextureSubImage2D(g.depth.get(), 0, 0, 0, kSize, kSize, GL_RED, GL_FLOAT, depth.data());
     Texture ao_tex = make_texture(GL_R32F, kSize, kSize);
     glTextureSubImage2D(ao_tex.get(), 0, 0, 0, kSize, kSize, GL_RED, GL_FLOAT, ao.data());
-    pass_.run(g, kind, ao_tex.get());
+    pass.run(g, kind, ao_tex.get());
     Plane out(ao.size());
     glGetTextureImage(ao_tex.get(), 0, GL_RED, GL_FLOAT,
                       static_cast<GLsizei>(out.size() * sizeof(float)), out.data());
@@ -338,6 +347,7 @@ class BlurFixture {
     return out;
   }
 
+ public:
   // The blur's analytic kernel: a Gaussian of sigma 4 px over taps -10..10, from its
   // definition rather than from blur.comp's table.
   static double gaussian(int i) { return i < -10 || i > 10 ? 0 : std::exp(-i * i / 32.0); }
@@ -348,8 +358,8 @@ class BlurFixture {
   }
 
  private:
-  Renderer& context_ = shared_renderer();  // current before pass_ compiles its programs
-  BlurPass pass_;
+  Renderer& context_ = shared_renderer();  // current before the passes compile their programs
+  BlurPass runs_{BlurKernel::kRuns}, tiles_{BlurKernel::kTiles};
 };
 
 // Float precision of a normalized 21-tap sum of values in [0, 1]: each of the two passes

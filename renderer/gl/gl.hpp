@@ -21,6 +21,7 @@
   X(PFNGLCLEARBUFFERUIVPROC, glClearBufferuiv)                           \
   X(PFNGLCLEARNAMEDBUFFERDATAPROC, glClearNamedBufferData)               \
   X(PFNGLCLEARNAMEDFRAMEBUFFERFVPROC, glClearNamedFramebufferfv)         \
+  X(PFNGLCLEARTEXIMAGEPROC, glClearTexImage)                             \
   X(PFNGLCLIPCONTROLPROC, glClipControl)                                 \
   X(PFNGLCOMPILESHADERPROC, glCompileShader)                             \
   X(PFNGLCOPYIMAGESUBDATAPROC, glCopyImageSubData)                       \

@@ -76,7 +76,7 @@ std::vector<PassTimer> DepthGBufferPass::run(const GpuScene& scene, const Camera
     framebuffer_zbuffer_ = g.zbuffer.get();
   }
   std::vector<PassTimer> times;
-  times.emplace_back("gbuffer_depth");
+  times.emplace_back("gbuffer");
   begin_scene_depth(depth_only_.get(), g);
   glUseProgram(raster_.get());
   set_view_projection(raster_.get(), camera);

@@ -35,7 +35,7 @@ class GBufferPass {
 class DepthGBufferPass {
  public:
   DepthGBufferPass();
-  // Times the rasterisation and the reconstruction apart, in that order.
+  // Times the rasterisation ("gbuffer") and the reconstruction ("gbuffer_normals") apart.
   std::vector<PassTimer> run(const GpuScene& scene, const Camera& camera, const GBuffer& target);
 
  private:
