@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Issue 44's GPU check: which OpenGL device renders and in which pipeline by default, then the
 # per-pass table of every technique in both pipelines (fragment draws, compute dispatches) at
-# 1920x1080 and 3840x2160, for bench/README.md's GPU section.
+# 1920x1080 and 3840x2160, then the compute pipeline over the depth-only G-buffer, for
+# bench/README.md's GPU section.
 #
 #   bench/gpu_check.sh [BUILD_DIR] [RUNS]        # defaults: build, 20
 #
@@ -21,5 +22,9 @@ for pipeline in fragment compute; do
   python3 "$bench/pass_table.py" --bin "$build/aosuite" --runs "$runs" --sizes "$sizes" \
     --pipeline "$pipeline"
 done
+echo
+echo "The compute pipeline over the depth-only G-buffer (--gbuffer depth):"
+python3 "$bench/pass_table.py" --bin "$build/aosuite" --runs "$runs" --sizes "$sizes" \
+  --pipeline compute -- --gbuffer depth
 echo
 echo "gpu_check.sh: $((SECONDS - start)) s"

@@ -63,7 +63,7 @@ def main():
             with tempfile.TemporaryDirectory() as out:
                 j = render(args, technique, width, height, out)
             device = f"{j['gl_device']}: {j['gl']}"
-            pipeline = j["pipeline"]
+            pipeline = f'{j["pipeline"]} pipeline, {j.get("gbuffer", "full")} G-buffer'
             ms = j["median_ms"]
             # The G-buffer is one pass or, depth-only, two (gbuffer, gbuffer_normals).
             gbuffer = sum(v for k, v in ms.items() if k.startswith("gbuffer"))
@@ -74,7 +74,7 @@ def main():
                          ", ".join(f"{k} {v:.3f}" for k, v in ms.items()
                                    if not k.startswith("gbuffer")
                                    and k not in ("blur", "blend", "frame_wall", "ao"))))
-        print(f"\n{args.scene} {width}x{height}, {pipeline} pipeline, median of {args.runs} frames, "
+        print(f"\n{args.scene} {width}x{height}, {pipeline}, median of {args.runs} frames, "
               f"{device}\n")
         print("| technique | G-buffer ms | AO ms | blur ms | blend ms | frame wall ms | AO sub-passes |")
         print("| --- | --- | --- | --- | --- | --- | --- |")
