@@ -185,14 +185,15 @@ const ParamSpec kParams[] = {
      {0, 1, false}},
     // Capped so the shader's squared lengths stay finite.
     {"thickness",
-     "bitmask: assumed thickness of every occluder, scene units",
+     "bitmask: assumed thickness of every occluder, a share of the radius (radius x "
+     "radius_scale), so it means the same at every scene scale",
      only<Technique::kBitmask>,
      +[](AoParams& p) -> float& { return p.bitmask.thickness; },
      0,
      1e6,
      false,
-     "0.6",
-     {0.02, 4, true}},
+     "1.2",
+     {0.04, 8, true}},
 };
 
 [[noreturn]] void bad_value(std::string_view key, std::string_view value, const char* why) {

@@ -71,9 +71,12 @@ struct GtaoParams {
 };
 
 // Visibility bitmask (Therrien et al. 2023): GTAO's slices and steps (GtaoParams), and the
-// thickness every sample is assumed to have behind its visible front, in scene units.
+// thickness every sample is assumed to have behind its visible front, as a share of the
+// radius (radius x radius_scale): a length in scene units would mean a thin shell on a
+// building and a thick slab on a statuette (issue 45). 0.5 is 0.25 units at the default
+// radius 0.5, the absolute default it replaced.
 struct BitmaskParams {
-  float thickness = 0.25f;
+  float thickness = 0.5f;
 };
 
 struct AoParams {

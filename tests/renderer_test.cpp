@@ -194,11 +194,10 @@ std::vector<Variant> stress_variants() {
 }
 
 // settings() at radius 0.5 with every parameter in scene units scaled with the scene: the
-// radius, and bitmask's thickness. SAO's bias is a share of the radius and the others' biases
-// are per unit depth or sines, so they stay.
+// radius alone. Every other length is relative (issue 45): bitmask's thickness and SAO's bias
+// are shares of the radius, the others' biases per unit depth or sines, so they stay.
 RenderSettings scaled_settings(const Variant& var, float scale, Blur blur = Blur::kNone) {
   RenderSettings rs = settings(var.t, 0.5f * scale, blur);
-  rs.params.bitmask.thickness *= scale;
   rs.params.gtao.exact_plane = var.exact_plane;
   rs.pipeline = var.pipeline;
   return rs;

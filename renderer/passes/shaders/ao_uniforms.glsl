@@ -14,6 +14,6 @@ layout(std140, binding = 0) uniform AoUniforms {
   int u_steps;                // GTAO, bitmask: per side
   float u_falloff_range;      // GTAO: share of the radius over which occluders fade out
   float u_thin_occluder;      // GTAO: XeGTAO's ThinOccluderCompensation
-  float u_thickness;          // bitmask: every occluder's assumed thickness, scene units
+  float u_thickness;          // bitmask: every occluder's assumed thickness, share of u_radius
   int u_exact_plane;          // GTAO: samples on the slice, arcs over an open plane's
 };

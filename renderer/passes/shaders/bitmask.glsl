@@ -12,7 +12,7 @@
 // normal's length (GTAO eq. 8): an open plane gives exactly 1 at any slice angle.
 uniform sampler2D u_depth;
 uniform sampler2D u_normal;
-#include "ao_uniforms.glsl"  // u_thickness: scene units; u_contrast: final power
+#include "ao_uniforms.glsl"  // u_thickness: a share of u_radius; u_contrast: final power
 #include "slice_sampling.glsl"  // slice_and_step_noise, step_distance: GTAO's
 
 const float kPi = 3.14159265;
@@ -72,7 +72,7 @@ float estimate_ao(ivec2 p) {
   float screen_radius = min(radius * u_proj_scale / z, 1e6);  // pixels
   if (!(screen_radius >= 1.3)) return 1.0;  // the whole kernel inside the pixel
   float min_s = 1.3 / screen_radius;  // the first sample leaves the centre pixel
-  float thickness = u_thickness;
+  float thickness = u_thickness * radius;  // a share of the radius: the same at every scale
 
   vec2 noise = slice_and_step_noise(p);
   int slices = max(u_slices, 1), steps = max(u_steps, 1);
