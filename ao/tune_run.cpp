@@ -197,6 +197,21 @@ class Evaluator {
   int renders_ = 0, reused_ = 0;
 };
 
+// Each measured scene's fold: its family, or the scene itself where it names none; a fold per
+// scene when the scenes make fewer than two families (nothing else could be left out).
+std::vector<std::string> fold_groups(const std::deque<rd::Scene>& scenes,
+                                     const std::vector<std::size_t>& measured) {
+  std::vector<std::string> group(scenes.size());
+  for (std::size_t i : measured)
+    group[i] = scenes[i].family.empty() ? scenes[i].name : scenes[i].family;
+  const bool one_family = std::ranges::all_of(
+      measured, [&](std::size_t i) { return group[i] == group[measured.front()]; });
+  if (one_family) {
+    for (std::size_t i : measured) group[i] = scenes[i].name;
+  }
+  return group;
+}
+
 void check(const TuneSettings& s) {
   if (s.scenes.empty()) throw std::invalid_argument("tune needs at least one scene");
   if (s.radii.empty()) throw std::invalid_argument("tune needs at least one radius");
@@ -238,24 +253,35 @@ TuneResult run_tune(const TuneSettings& s, const std::function<void(const TunePr
     if (on) on({stage, r.trials, s.search.trials, r.error, true});
     return r;
   };
-  // A fold per scene with something to measure (a scene whose every view is empty has none).
+  // The scenes with something to measure (a scene whose every view is empty has none).
   std::vector<std::size_t> measured;
   for (std::size_t i = 0; i < ev.scenes().size(); ++i) {
     if (std::ranges::any_of(ev.items(), [i](const Item& it) { return it.scene_index == i; }))
       measured.push_back(i);
   }
   for (std::size_t i : measured) out.scenes.push_back(s.scenes[i]);
-  const std::size_t n = measured.size();
+  const std::vector<std::string> group = fold_groups(ev.scenes(), measured);
+  std::vector<std::string> groups;  // in the order of their first scene
+  for (std::size_t i : measured) {
+    if (std::ranges::find(groups, group[i]) == groups.end()) groups.push_back(group[i]);
+  }
+  const std::size_t n = groups.size();
   for (std::size_t fold_index = 0; n >= 2 && fold_index < n; ++fold_index) {
-    const std::size_t f = measured[fold_index], shown = fold_index + 1;
-    const std::string name = ev.scenes()[f].name;
-    const SearchResult r = searched(fmt::format("fold {}/{} (held out: {})", shown, n, name),
-                                    [f](const Item& i) { return i.scene_index != f; });
-    Fold fold{name, {}, {}, space.key(r.best)};
+    const std::string& g = groups[fold_index];
+    const auto in_fold = [&group, &g](const Item& i) { return group[i.scene_index] == g; };
+    const SearchResult r = searched(fmt::format("fold {}/{} (held out: {})", fold_index + 1, n, g),
+                                    [&](const Item& i) { return !in_fold(i); });
+    Fold fold{g, {}, {}, space.key(r.best), {}};
     for (std::size_t k = 0; k < s.radii.size(); ++k) {
-      auto held = [f, k](const Item& i) { return i.scene_index == f && i.radius_index == k; };
+      auto held = [&](const Item& i) { return in_fold(i) && i.radius_index == k; };
       fold.default_error.push_back(ev.mean(out.defaults, held));
       fold.tuned_error.push_back(ev.mean(r.best, held));
+    }
+    for (std::size_t i : measured) {
+      if (group[i] != g) continue;
+      auto scene = [i](const Item& it) { return it.scene_index == i; };
+      fold.scenes.push_back(
+          {ev.scenes()[i].name, ev.mean(out.defaults, scene), ev.mean(r.best, scene)});
     }
     out.folds.push_back(std::move(fold));
   }

@@ -1,9 +1,10 @@
 // `aosuite tune`: one technique's parameters searched (ao/tune_search.hpp) against the
 // ray-traced reference at the same radius (the AO term's RMSE over geometry pixels, as
 // `aosuite error` prints it under "all"), over every view of a set of scenes at one or more
-// radii, validated by leaving one scene out at a time: each fold searches on the other scenes
-// and is measured on the one left out, which the search never saw. The preset is then searched
-// on every scene. Measurements are kept in a state file, so a rerun with the same settings
+// radii, validated by leaving one family of scenes out at a time (renderer::Scene::family; one
+// scene at a time when all are of one family): each fold searches on the other families and is
+// measured on the one left out, which the search never saw. The preset is then searched on
+// every scene. Measurements are kept in a state file, so a rerun with the same settings
 // (interrupted or not) measures nothing twice and gives the same result.
 #pragma once
 
@@ -29,12 +30,21 @@ struct TuneSettings {
   std::optional<renderer::Pipeline> pipeline;
 };
 
-// One scene left out: its error under the defaults and under the parameters searched on the
-// other scenes, per radius (TuneSettings::radii order), each the mean over the scene's views.
+// A held-out scene's error under the defaults and under its fold's parameters, each the mean
+// over its views and the radii.
+struct HeldOutScene {
+  std::string scene;
+  double default_error = 0, tuned_error = 0;
+};
+
+// One family (or scene) left out: its error under the defaults and under the parameters
+// searched on the others, per radius (TuneSettings::radii order), each the mean over its
+// scenes' views; and each of its scenes apart, so a mean cannot hide one that got worse.
 struct Fold {
-  std::string held_out;
+  std::string held_out;  // the family, or the scene when the folds are per scene
   std::vector<double> default_error, tuned_error;
   std::string params;  // TuneSpace::key of what this fold's search found
+  std::vector<HeldOutScene> scenes;
 };
 
 struct TuneResult {

@@ -67,6 +67,25 @@ std::string radii_text(const std::vector<float>& radii) {
   return out;
 }
 
+// Every held-out scene's tuned/default error ratio: how many got worse, and the worst.
+struct HeldOutRatios {
+  int count = 0, worse = 0;
+  double worst = 0;
+  std::string worst_scene;
+};
+
+HeldOutRatios held_out_ratios(const std::vector<ao::Fold>& folds) {
+  HeldOutRatios out;
+  for (const ao::Fold& f : folds) {
+    for (const ao::HeldOutScene& h : f.scenes) {
+      const double ratio = h.tuned_error / h.default_error;
+      ++out.count, out.worse += ratio > 1;
+      if (ratio > out.worst) out.worst = ratio, out.worst_scene = h.scene;
+    }
+  }
+  return out;
+}
+
 nlohmann::ordered_json result_json(const TuneArgs& a, const ao::TuneResult& r) {
   const ao::TuneSpace space(a.s.technique);
   nlohmann::ordered_json j;
@@ -80,12 +99,25 @@ nlohmann::ordered_json result_json(const TuneArgs& a, const ao::TuneResult& r) {
   j["ao_ms"] = {{"tuned", r.tuned_ms}, {"default", r.default_ms}, {"view", r.timed_view}};
   nlohmann::ordered_json folds = nlohmann::ordered_json::array();
   for (const ao::Fold& f : r.folds) {
+    nlohmann::ordered_json scenes = nlohmann::ordered_json::array();
+    for (const ao::HeldOutScene& h : f.scenes) {
+      scenes.push_back({{"scene", h.scene},
+                        {"default", h.default_error},
+                        {"tuned", h.tuned_error},
+                        {"ratio", h.tuned_error / h.default_error}});
+    }
     folds.push_back({{"held_out", f.held_out},
                      {"default", f.default_error},
                      {"tuned", f.tuned_error},
-                     {"params", f.params}});
+                     {"params", f.params},
+                     {"scenes", scenes}});
   }
   j["folds"] = folds;
+  const HeldOutRatios ratios = held_out_ratios(r.folds);
+  j["held_out_scenes"] = {{"count", ratios.count},
+                          {"worse", ratios.worse},
+                          {"worst_ratio", ratios.worst},
+                          {"worst_scene", ratios.worst_scene}};
   j["left_out"] = r.left_out;
   return j;
 }
@@ -101,7 +133,9 @@ void print_result(const TuneArgs& a, const ao::TuneResult& r) {
       taps(a.s.technique) ? fmt::format(", at most {} depth taps", a.s.search.budget_taps) : "");
   for (const std::string& v : r.left_out) fmt::print("  left out {}\n", v);
   if (!r.folds.empty()) {
-    fmt::print("AO RMSE on the scene left out (searched on the others):\n");
+    fmt::print(
+        "AO RMSE on the family left out (each scene, when all are of one family), "
+        "searched on the others:\n");
     fmt::print("  {:<14} {:>6} {:>9} {:>9}\n", "held out", "r", "default", "tuned");
     for (const ao::Fold& f : r.folds) {
       for (std::size_t k = 0; k < a.s.radii.size(); ++k)
@@ -112,9 +146,12 @@ void print_result(const TuneArgs& a, const ao::TuneResult& r) {
       const Spread d = spread(column(r.folds, k, false)), t = spread(column(r.folds, k, true));
       fmt::print(
           "  r = {:g}: default {:.4f} ± {:.4f}, tuned {:.4f} ± {:.4f} ({:+.1f} %), mean ± sd "
-          "over {} scenes\n",
+          "over {} folds\n",
           a.s.radii[k], d.mean, d.sd, t.mean, t.sd, 100 * (t.mean / d.mean - 1), r.folds.size());
     }
+    const HeldOutRatios ratios = held_out_ratios(r.folds);
+    fmt::print("  each scene left out, tuned / default: worst {:.3f} ({}), {} of {} worse\n",
+               ratios.worst, ratios.worst_scene, ratios.worse, ratios.count);
   }
   fmt::print("preset, searched on every scene: {}\n  {}\n", a.out, space.key(r.tuned));
   const std::string cost = taps(a.s.technique) ? fmt::format("; {} depth taps (defaults {})",

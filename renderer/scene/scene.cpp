@@ -267,10 +267,13 @@ struct Builtin {
   std::string_view name;
   Scene (*make)();
   std::vector<View> (*downloaded_views)();  // set for scenes that need a download
+  std::string_view family;                  // Scene::family
 };
-constexpr Builtin kBuiltins[] = {{"plane", plane, nullptr},       {"corner", corner, nullptr},
-                                 {"spheres", spheres, nullptr},   {"village", village, nullptr},
-                                 {"workshop", workshop, nullptr}, {"dragon", dragon, dragon_views}};
+// Plane to workshop are made of boxes, quads and spheres in code; the dragon is a scan.
+constexpr Builtin kBuiltins[] = {
+    {"plane", plane, nullptr, "analytic"},       {"corner", corner, nullptr, "analytic"},
+    {"spheres", spheres, nullptr, "analytic"},   {"village", village, nullptr, "analytic"},
+    {"workshop", workshop, nullptr, "analytic"}, {"dragon", dragon, dragon_views, "scan"}};
 
 const Builtin& find_builtin(std::string_view name) {
   for (const Builtin& b : kBuiltins) {
@@ -303,7 +306,12 @@ std::filesystem::path downloadable_scene_file(std::string_view name) {
   return dir / kDragonFile;
 }
 
-Scene builtin_scene(std::string_view name) { return find_builtin(name).make(); }
+Scene builtin_scene(std::string_view name) {
+  const Builtin& b = find_builtin(name);
+  Scene s = b.make();
+  s.family = b.family;
+  return s;
+}
 
 std::vector<View> builtin_scene_views(std::string_view name) {
   const Builtin& b = find_builtin(name);

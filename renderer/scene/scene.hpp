@@ -25,6 +25,10 @@ struct Scene {
   std::string name;
   std::vector<Mesh> meshes;
   std::vector<View> views;
+  // The kind of scene ("analytic", "scan", "architecture", "cad"...): `aosuite tune` validates
+  // by leaving a whole family out at a time, since scenes of one kind share their scale and
+  // structure and would flatter a preset fitted to them. Empty: a family of its own.
+  std::string family = {};
 };
 
 // Geometry builders, all with normals.

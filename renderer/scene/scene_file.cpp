@@ -164,9 +164,10 @@ Scene load_scene_file(const fs::path& path) {
   } catch (const toml::parse_error& e) {
     r.fail(e.source(), e.description());
   }
-  r.only_keys(root, {"name", "meshes", "views"});
+  r.only_keys(root, {"name", "family", "meshes", "views"});
   Scene scene;
   scene.name = root.contains("name") ? r.name(*root.get("name"), "name") : path.stem().string();
+  if (root.contains("family")) scene.family = r.name(*root.get("family"), "family");
   const std::vector<const toml::table*> meshes = r.tables(r.required(root, "meshes"), "meshes");
   const std::uint64_t limit = max_scene_triangles();
   auto over = [&](const toml::table& t, std::uint64_t triangles) {
