@@ -212,6 +212,38 @@ std::vector<std::string> fold_groups(const std::deque<rd::Scene>& scenes,
   return group;
 }
 
+// Each shrink's worst fold: every fold's parameters moved that share of the way from the
+// defaults, measured on the fold's own held-out scenes (never on those it searched on).
+std::vector<ShrinkTrial> shrink_trials(Evaluator& ev, const TuneSpace& space, const TuneResult& out,
+                                       const std::vector<std::string>& groups,
+                                       const std::vector<std::string>& group,
+                                       const std::vector<rd::AoParams>& fold_params) {
+  std::vector<ShrinkTrial> trials;
+  if (out.folds.empty()) return trials;
+  for (double shrink : {0.0, 0.25, 0.5, 0.75, 1.0}) {
+    ShrinkTrial t{shrink, 0};
+    for (std::size_t f = 0; f < out.folds.size(); ++f) {
+      const auto held = [&](const Item& i) { return group[i.scene_index] == groups[f]; };
+      const double defaults = ev.mean(out.defaults, held);
+      const double shrunk = ev.mean(space.between(out.defaults, fold_params[f], shrink), held);
+      t.worst_ratio = std::max(t.worst_ratio, defaults > 0 ? shrunk / defaults : 1.0);
+    }
+    trials.push_back(t);
+  }
+  return trials;
+}
+
+// The shrink with the lowest worst ratio (the smaller on a tie), or 0 unless that beats the
+// defaults; 1 (the search's own result) when there were no folds to judge by.
+double chosen_shrink(const std::vector<ShrinkTrial>& trials) {
+  if (trials.empty()) return 1;
+  const ShrinkTrial* best = &trials.front();
+  for (const ShrinkTrial& t : trials) {
+    if (t.worst_ratio < best->worst_ratio) best = &t;
+  }
+  return best->worst_ratio < 1 ? best->shrink : 0;
+}
+
 void check(const TuneSettings& s) {
   if (s.scenes.empty()) throw std::invalid_argument("tune needs at least one scene");
   if (s.radii.empty()) throw std::invalid_argument("tune needs at least one radius");
@@ -266,12 +298,14 @@ TuneResult run_tune(const TuneSettings& s, const std::function<void(const TunePr
     if (std::ranges::find(groups, group[i]) == groups.end()) groups.push_back(group[i]);
   }
   const std::size_t n = groups.size();
+  std::vector<rd::AoParams> fold_params;  // each fold's search result
   for (std::size_t fold_index = 0; n >= 2 && fold_index < n; ++fold_index) {
     const std::string& g = groups[fold_index];
     const auto in_fold = [&group, &g](const Item& i) { return group[i.scene_index] == g; };
     const SearchResult r = searched(fmt::format("fold {}/{} (held out: {})", fold_index + 1, n, g),
                                     [&](const Item& i) { return !in_fold(i); });
     Fold fold{g, {}, {}, space.key(r.best), {}};
+    fold_params.push_back(r.best);
     for (std::size_t k = 0; k < s.radii.size(); ++k) {
       auto held = [&](const Item& i) { return in_fold(i) && i.radius_index == k; };
       fold.default_error.push_back(ev.mean(out.defaults, held));
@@ -285,9 +319,13 @@ TuneResult run_tune(const TuneSettings& s, const std::function<void(const TunePr
     }
     out.folds.push_back(std::move(fold));
   }
+  out.shrink_trials = shrink_trials(ev, space, out, groups, group, fold_params);
+  out.shrink = chosen_shrink(out.shrink_trials);
   const SearchResult all = searched("all scenes", [](const Item&) { return true; });
-  out.tuned = all.best;
-  out.tuned_error = all.error;
+  out.searched = all.best;
+  out.tuned = space.between(out.defaults, all.best, out.shrink);
+  const auto every = [](const Item&) { return true; };
+  out.tuned_error = out.shrink == 1 ? all.error : ev.mean(out.tuned, every);
   out.tuned_taps = depth_taps(space, out.tuned);
   out.default_error = ev.mean(out.defaults, [](const Item&) { return true; });
   m.save();

@@ -47,9 +47,23 @@ struct Fold {
   std::vector<HeldOutScene> scenes;
 };
 
+// How far the preset moves from the defaults towards what the search found (issue 45): each
+// fold's parameters moved a share `shrink` of the way from the defaults, measured on what the
+// fold left out. The chosen share is the one whose worst fold's ratio to the defaults is lowest,
+// and 0 (the defaults kept) unless that ratio is below 1: a preset must beat the defaults on
+// every family it was not tuned on.
+struct ShrinkTrial {
+  double shrink = 0;
+  double worst_ratio = 1;  // the worst fold's held-out error over the defaults' there
+};
+
 struct TuneResult {
-  renderer::AoParams defaults, tuned;         // the technique's defaults; searched on every scene
-  double default_error = 0, tuned_error = 0;  // mean over every scene, view and radius
+  // The technique's defaults; the search on every scene; the preset: that search moved a share
+  // `shrink` of the way from the defaults (the search itself without folds to choose by).
+  renderer::AoParams defaults, searched, tuned;
+  double shrink = 1;
+  std::vector<ShrinkTrial> shrink_trials;     // empty without folds
+  double default_error = 0, tuned_error = 0;  // mean over every scene, view and radius (preset)
   int default_taps = 0, tuned_taps = 0;
   // The median AO time of one frame at the tune's size, on the view with the most geometry:
   // what the depth-tap budget stands for, measured, not used by the search (not repeatable).

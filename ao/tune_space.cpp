@@ -96,6 +96,15 @@ std::vector<std::pair<std::string, std::string>> TuneSpace::entries(const rd::Ao
   return out;
 }
 
+rd::AoParams TuneSpace::between(const rd::AoParams& from, const rd::AoParams& to, double t) const {
+  if (t <= 0) return from;
+  if (t >= 1) return to;
+  const std::vector<double> a = point(from), b = point(to);
+  std::vector<double> mid(a.size());
+  for (std::size_t i = 0; i < a.size(); ++i) mid[i] = a[i] + t * (b[i] - a[i]);
+  return params(mid, from);
+}
+
 std::string TuneSpace::key(const rd::AoParams& p) const {
   std::string out;
   for (const auto& [k, v] : entries(p)) out += (out.empty() ? "" : " ") + k + "=" + v;

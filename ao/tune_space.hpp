@@ -31,6 +31,10 @@ class TuneSpace {
   renderer::AoParams params(const std::vector<double>& point, renderer::AoParams base) const;
   // The coordinates of `params` (clamped into the search ranges): where a search starts.
   std::vector<double> point(const renderer::AoParams& params) const;
+  // `from` moved a share `t` of the way to `to` in the search's coordinates (a log-scaled
+  // parameter geometrically): t = 0 is `from` itself, t = 1 is `to`.
+  renderer::AoParams between(const renderer::AoParams& from, const renderer::AoParams& to,
+                             double t) const;
   // The searched parameters as text, "key=value key=value" in table order: a point's identity
   // (two points that round to the same parameters are the same point).
   std::string key(const renderer::AoParams& params) const;

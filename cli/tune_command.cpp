@@ -86,6 +86,23 @@ HeldOutRatios held_out_ratios(const std::vector<ao::Fold>& folds) {
   return out;
 }
 
+// Why the preset is what it is, for its header and the terminal: the shrinks tried on the
+// folds and the one chosen. Empty without folds.
+std::string shrink_text(const ao::TuneResult& r) {
+  if (r.shrink_trials.empty()) return {};
+  std::string tried;
+  for (const ao::ShrinkTrial& t : r.shrink_trials)
+    tried += fmt::format("{}{:g}: {:.3f}", tried.empty() ? "" : ", ", t.shrink, t.worst_ratio);
+  const std::string chosen =
+      r.shrink == 0 ? "the defaults kept: no share beat them on every fold's held-out scenes"
+                    : fmt::format("the search's parameters moved {:g} of the way from the defaults",
+                                  r.shrink);
+  return fmt::format(
+      "Chosen on held-out scenes: the worst fold's error over the defaults', by the share of the "
+      "way from the defaults to each fold's search: {}; {}.",
+      tried, chosen);
+}
+
 nlohmann::ordered_json result_json(const TuneArgs& a, const ao::TuneResult& r) {
   const ao::TuneSpace space(a.s.technique);
   nlohmann::ordered_json j;
@@ -94,6 +111,11 @@ nlohmann::ordered_json result_json(const TuneArgs& a, const ao::TuneResult& r) {
   j["trials"] = a.s.search.trials, j["seed"] = a.s.search.seed;
   j["budget_taps"] = a.s.search.budget_taps;
   j["preset"] = space.key(r.tuned), j["default"] = space.key(r.defaults);
+  j["searched"] = space.key(r.searched);
+  nlohmann::ordered_json trials = nlohmann::ordered_json::array();
+  for (const ao::ShrinkTrial& t : r.shrink_trials)
+    trials.push_back({{"shrink", t.shrink}, {"worst_ratio", t.worst_ratio}});
+  j["shrink"] = {{"chosen", r.shrink}, {"trials", trials}};
   j["error"] = {{"tuned", r.tuned_error}, {"default", r.default_error}};
   j["taps"] = {{"tuned", r.tuned_taps}, {"default", r.default_taps}};
   j["ao_ms"] = {{"tuned", r.tuned_ms}, {"default", r.default_ms}, {"view", r.timed_view}};
@@ -153,6 +175,7 @@ void print_result(const TuneArgs& a, const ao::TuneResult& r) {
     fmt::print("  each scene left out, tuned / default: worst {:.3f} ({}), {} of {} worse\n",
                ratios.worst, ratios.worst_scene, ratios.worse, ratios.count);
   }
+  if (const std::string why = shrink_text(r); !why.empty()) fmt::print("{}\n", why);
   fmt::print("preset, searched on every scene: {}\n  {}\n", a.out, space.key(r.tuned));
   const std::string cost = taps(a.s.technique) ? fmt::format("; {} depth taps (defaults {})",
                                                              r.tuned_taps, r.default_taps)
@@ -214,6 +237,7 @@ int run_tune(TuneArgs& a) {
   if (taps(a.s.technique))
     header.push_back(
         fmt::format("{} depth taps per pixel (defaults {}).", r.tuned_taps, r.default_taps));
+  if (const std::string why = shrink_text(r); !why.empty()) header.push_back(why);
   ao::write_preset(preset, header);
   if (!a.json.empty()) write_text(a.json, result_json(a, r).dump(2) + "\n");
   print_result(a, r);

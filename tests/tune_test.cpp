@@ -5,6 +5,7 @@
 // without rendering again.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -84,6 +85,21 @@ TEST(TuneSpace, PointsRoundTripThroughParametersAndPresetFiles) {
     }
   }
   fs::remove_all(dir);
+}
+
+// The shrink toward the defaults moves in the search's coordinates: the ends are the two
+// parameter sets themselves, and halfway a log-scaled parameter (bitmask's thickness, 0.04..8;
+// the intensity, 0.25..4) is their geometric mean, to the three digits kept.
+TEST(TuneSpace, BetweenMovesAShareOfTheWayInSearchCoordinates) {
+  const TuneSpace space(rd::Technique::kBitmask);
+  rd::AoParams from = rd::default_params(rd::Technique::kBitmask), to = from;
+  from.bitmask.thickness = 0.1f, to.bitmask.thickness = 1.6f;
+  from.intensity = 1, to.intensity = 2;
+  EXPECT_EQ(space.key(space.between(from, to, 0)), space.key(from));
+  EXPECT_EQ(space.key(space.between(from, to, 1)), space.key(to));
+  const rd::AoParams mid = space.between(from, to, 0.5);
+  EXPECT_NEAR(mid.bitmask.thickness, 0.4, 0.4 * 5e-3);  // sqrt(0.1 * 1.6)
+  EXPECT_NEAR(mid.intensity, std::sqrt(2.0), 5e-3);
 }
 
 // A bowl over GTAO's space with its minimum at a known point: the search must get close to
@@ -329,6 +345,34 @@ TEST_F(TuneRun, FoldsLeaveAFamilyOutAndAreMeasuredOnIt) {
       EXPECT_GT(h.default_error, 0) << h.scene;
     }
   }
+}
+
+// The preset is the search moved toward the defaults by the share whose worst held-out fold
+// does best, and the defaults themselves unless that fold beats them: with one trial each
+// search returns where it starts, the defaults, so nothing beats them and they are kept.
+TEST_F(TuneRun, APresetMustBeatTheDefaultsOnEveryFoldOrIsTheDefaults) {
+  const aosuite::ao::TuneResult r = aosuite::ao::run_tune(s_);
+  ASSERT_EQ(r.shrink_trials.size(), 5u);
+  EXPECT_EQ(r.shrink_trials.front().shrink, 0);
+  EXPECT_DOUBLE_EQ(r.shrink_trials.front().worst_ratio, 1);  // the defaults against themselves
+  const TuneSpace space(s_.technique);
+  EXPECT_EQ(space.key(r.tuned), space.key(space.between(r.defaults, r.searched, r.shrink)));
+  const auto chosen =
+      std::ranges::find(r.shrink_trials, r.shrink, &aosuite::ao::ShrinkTrial::shrink);
+  ASSERT_NE(chosen, r.shrink_trials.end());
+  for (const aosuite::ao::ShrinkTrial& t : r.shrink_trials) {
+    EXPECT_GE(t.worst_ratio, chosen->worst_ratio) << t.shrink;
+  }
+  if (r.shrink > 0) {
+    EXPECT_LT(chosen->worst_ratio, 1);
+  }
+
+  s_.search.trials = 1;
+  s_.state = dir_ / "one_trial.json";
+  const aosuite::ao::TuneResult kept = aosuite::ao::run_tune(s_);
+  EXPECT_EQ(kept.shrink, 0);
+  EXPECT_EQ(space.key(kept.tuned), space.key(kept.defaults));
+  EXPECT_EQ(kept.tuned_error, kept.default_error);
 }
 
 // PMI is tuned like the others (its map's intensity and contrast, on its cached channel), and a
