@@ -130,7 +130,12 @@
   // --- exposure: a float image's preview holds sRGB(v / 2^stops) (stops: enough that its
   // brightest sample is not clipped); an SVG filter per stops maps each 8-bit code back to
   // sRGB(min(1, v * 2^exposure)), so one control sets every float picture's exposure ---------
-  let exposure = 0;
+  // Until the reviewer moves the control, each case opens at its own images' exposure: minus
+  // the most stops a preview of it is darkened by, so its brightest 0.1 % is just below white
+  // (harness/report_images.hpp) instead of a sky of 4 clipped. The control then rules.
+  let exposure = 0, exposureSet = false;
+  const autoExposure = (images) =>
+    -Math.max(0, ...images.filter((v) => v.golden_file || v.new_file).map((v) => Math.max(v.golden_stops || 0, v.new_stops || 0)));
   const toLinear = (c) => (c <= 0.04045 ? c / 12.92 : Math.pow((c + 0.055) / 1.055, 2.4));
   const toSrgb = (l) => (l <= 0.0031308 ? 12.92 * l : 1.055 * Math.pow(l, 1 / 2.4) - 0.055);
   document.body.insertAdjacentHTML("beforeend", "<svg id=exposure-filters width=0 height=0 style=position:absolute aria-hidden=true></svg>");
@@ -159,7 +164,10 @@
     for (const input of document.querySelectorAll(".exposure input")) input.value = stops;
   }
   document.addEventListener("input", (e) => {
-    if (e.target.closest && e.target.closest(".exposure")) setExposure(+e.target.value);
+    if (e.target.closest && e.target.closest(".exposure")) {
+      exposureSet = true;
+      setExposure(+e.target.value);
+    }
   });
   // The style that puts a float picture (a preview: `file` is its float file) under the
   // exposure control.
@@ -195,7 +203,8 @@
         v.gates.map((g) => `<tr class="${g.pass ? "PASS" : "FAIL"}"><td>${esc(g.gate)}</td><td class=num>${esc(g.value)}</td><td class=num>${esc(g.limit)}</td><td class=num>${esc(g.margin)}</td></tr>`).join("") + "</table>";
     }
     if (v.golden_file || v.new_file) {
-      h += `<p><label class=exposure>exposure <input type=range min=-8 max=8 step=0.5 value=${exposure} aria-label=exposure> <output>${exposure}</output> stops</label></p>`;
+      h += `<p><label class=exposure>exposure <input type=range min=-8 max=8 step=0.5 value=${exposure} aria-label=exposure> <output>${exposure}</output> stops</label>` +
+        `${exposureSet ? "" : " <span class=note>(chosen from the images: their brightest 0.1 % just below white)</span>"}</p>`;
     }
     h += `<div class=images>${fig(v.golden, "golden", v.golden_file, v.golden_stops)}${fig(v.new, "new", v.new_file, v.new_stops)}${diffFig(v)}${fig(v.heat, "FLIP error (magma)")}${fig(v.regions, "region map")}`;
     if (!brief && v.golden && v.new && !v.identical) {
@@ -219,6 +228,7 @@
       tr.scrollIntoView({ block: "nearest" });
     }
     const c = data[i];
+    if (!exposureSet) setExposure(autoExposure(c.images));
     let h = `<button class=close title="close (Esc)">×</button><h2 id="${esc(c.id)}">${esc(c.id)} <span class="${c.status}">${c.status}</span></h2>`;
     if (c.message) h += `<p>${esc(c.message)}</p>`;
     if (c.not_reused) h += `<p class=note>${esc(c.not_reused)}</p>`;
