@@ -493,6 +493,8 @@ Comparison run(const Input& actual_in, const Input& expected_in, const Tolerance
   if (!c.same())
     c.changes = changed_regions(expected.rgba8(), actual.rgba8(), ignored, 8, o.max_bytes);
   add_diff(expected, actual, t, o, std::move(ignored), c);
+  if (o.want_difference_views && !c.same())
+    c.views = difference_views(expected.rgba8(), actual.rgba8());
   return c;
 }
 

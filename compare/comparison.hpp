@@ -13,6 +13,7 @@
 
 #include "common/file_io.hpp"
 #include "compare/change_regions.hpp"
+#include "compare/difference_views.hpp"
 #include "compare/metric.hpp"
 #include "compare/resemble.hpp"
 #include "compare/tolerance.hpp"
@@ -35,8 +36,9 @@ struct Input {
 using Counted = std::vector<std::uint8_t>;
 
 struct Options {
-  bool want_diff = false;     // Resemble's diff image, when the images are not the same
-  bool want_heatmap = false;  // the heat-map metric's error map, likewise
+  bool want_diff = false;              // Resemble's diff image, when the images are not the same
+  bool want_heatmap = false;           // the heat-map metric's error map, likewise
+  bool want_difference_views = false;  // Comparison::views, likewise (8-bit images)
   // width * height flags (foreground_only's geometry pixels): Resemble's mismatch, the channel
   // figures and every metric cover only the flagged pixels.
   const Counted* counted = nullptr;
@@ -80,7 +82,8 @@ struct Comparison {
   std::vector<metric::Outcome> outcomes;      // each gate's value, limit and margin
   RgbaImage diff;                             // Resemble's diff image, when asked and not the same
   std::vector<std::uint8_t> ignored;          // with a diff: the pixels the tolerance ignored
-  RgbaImage heatmap;  // the heat-map metric's map, when asked and not the same
+  RgbaImage heatmap;                     // the heat-map metric's map, when asked and not the same
+  std::optional<DifferenceViews> views;  // absolute and signed, when asked and not the same
   std::optional<resemble::Result> resemble;  // Resemble's own result, for `compare`'s output
   // What kind of change each changed region is (shift, brightness, added, ...): 8-bit images
   // that are not the same only.

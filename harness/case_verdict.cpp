@@ -91,6 +91,12 @@ void judge_case(const Suite& suite, const Case& c, const std::string& platform, 
       write_png_rgba8(case_dir / ("diff_" + name + ".png"), v.diff);
       r.files["diff:" + name] = c.id + "/diff_" + name + ".png";
     }
+    if (v.views && show) {
+      write_png_rgba8(case_dir / ("abs_" + name + ".png"), v.views->absolute);
+      write_png_rgba8(case_dir / ("signed_" + name + ".png"), v.views->signed_change);
+      r.files["abs:" + name] = c.id + "/abs_" + name + ".png";
+      r.files["signed:" + name] = c.id + "/signed_" + name + ".png";
+    }
     if (!v.heatmap.empty() && show) {
       write_png_rgba8(case_dir / ("heat_" + name + ".png"), v.heatmap);
       r.files["heat:" + name] = c.id + "/heat_" + name + ".png";

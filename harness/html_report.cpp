@@ -222,6 +222,8 @@ void write_html_report(const RunResults& run, const fs::path& report_dir,
                               {"message", printable(v.message)},
                               {"diff", url(file_of(c, "diff:" + v.image))},
                               {"heat", url(file_of(c, "heat:" + v.image))},
+                              {"abs", url(file_of(c, "abs:" + v.image))},
+                              {"signed", url(file_of(c, "signed:" + v.image))},
                               {"regions", url(file_of(c, "regions:" + v.image))},
                               {"ignored", url(file_of(c, "ignored:" + v.image))},
                               {"gates", gates_json(v)}};

@@ -86,7 +86,7 @@ ImageVerdict against(std::string_view image, std::span<const unsigned char> rend
     if (!golden.error.empty()) throw std::runtime_error(golden.error);
     v.golden_hash = golden_hash(bytes);
     comparison::Options o;
-    o.want_diff = o.want_heatmap = want_diff;
+    o.want_diff = o.want_heatmap = o.want_difference_views = want_diff;
     o.counted = counted;
     if (!t.regions.empty()) o.region_map = region_map(golden_file, image);
     static_cast<comparison::Comparison&>(v) =
@@ -133,6 +133,7 @@ ImageVerdict judge(std::string_view image, std::span<const unsigned char> render
   for (ImageVerdict& v : tried) {
     if (v.status == Status::kPass) {
       v.heatmap = {};  // maps are for failures and warnings
+      v.views.reset();
       return v;
     }
   }

@@ -246,6 +246,30 @@ TEST_F(ReportView, BrightFloatImagesArePreviewedDarkenedUnderAnExposureControl) 
       << "a picture did not load";
 }
 
+// A failing 8-bit image shows why beside Resemble's diff: its absolute difference scaled to
+// the largest (chart.png's rows that turned green: |R| and |G| change by 255, full scale) and
+// the signed one in a diverging map, with the FLIP map's colour scale.
+TEST_F(ReportView, AFailureShowsItsAbsoluteAndSignedDifference) {
+  ASSERT_EQ(check().rc, 1);
+  const nlohmann::json image = by_id(data(), "chart.png").at("images").at(0);
+  const std::string abs = image.at("abs"), sign = image.at("signed");
+  ASSERT_FALSE(abs.empty());
+  ASSERT_FALSE(sign.empty());
+  const cv::Mat a = read_png_rgba8(dir_ / "rep" / abs), d = read_png_rgba8(dir_ / "rep" / sign);
+  // RGBA in memory as written: a changed row is |0-255|, |255-0|, 0 scaled by 255/255.
+  EXPECT_EQ(a.at<cv::Vec4b>(0, 0), cv::Vec4b(255, 255, 0, 255));
+  EXPECT_EQ(a.at<cv::Vec4b>(5, 0), cv::Vec4b(0, 0, 0, 255));
+  EXPECT_EQ(d.at<cv::Vec4b>(5, 0), cv::Vec4b(255, 255, 255, 255));  // unchanged: white
+  const std::string panel = dom("#case=chart.png");
+  EXPECT_NE(panel.find("|new − golden|, scaled"), std::string::npos) << panel;
+  EXPECT_NE(panel.find("blue darker, white unchanged, red brighter"), std::string::npos);
+  EXPECT_NE(panel.find("class=\"scale\""), std::string::npos);
+  EXPECT_EQ(panel.find("<figure class=\"missing\">"), std::string::npos)
+      << "a picture did not load";
+  // The views are 8-bit images' (the EXR's change is read through its exposure control).
+  EXPECT_EQ(by_id(data(), "ao.exr").at("images").at(0).at("abs"), "");
+}
+
 // What a tolerance sets apart is drawn over the diff: the pixels its ignore box and mask leave
 // out, as a layer (outlined, translucent inside) that the page stacks on the diff picture.
 TEST_F(ReportView, IgnoredPixelsAreDrawnOverTheDiff) {

@@ -186,6 +186,10 @@
       layers.map(([src, cls, what]) => `<img class=${cls} src="${esc(url(src))}" alt="${what}">`).join("") +
       `</div><figcaption>diff; ${layers.map((l) => l[2]).join(", ")}</figcaption></figure>`;
   }
+  // The FLIP map with its colour scale: magma from 0 (no perceived difference) to 1.
+  const heatFig = (v) =>
+    !v.heat ? "" : `<figure><img src="${esc(url(v.heat))}" alt="FLIP error">` +
+      `<figcaption>FLIP error (magma) <span class=scale aria-label="colour scale 0 to 1">0 <i></i> 1</span></figcaption></figure>`;
   document.addEventListener("error", (e) => {
     const fail = e.target.closest && e.target.closest("figure");
     if (fail && e.target.tagName === "IMG") fail.classList.add("missing");
@@ -206,7 +210,10 @@
       h += `<p><label class=exposure>exposure <input type=range min=-8 max=8 step=0.5 value=${exposure} aria-label=exposure> <output>${exposure}</output> stops</label>` +
         `${exposureSet ? "" : " <span class=note>(chosen from the images: their brightest 0.1 % just below white)</span>"}</p>`;
     }
-    h += `<div class=images>${fig(v.golden, "golden", v.golden_file, v.golden_stops)}${fig(v.new, "new", v.new_file, v.new_stops)}${diffFig(v)}${fig(v.heat, "FLIP error (magma)")}${fig(v.regions, "region map")}`;
+    h += `<div class=images>${fig(v.golden, "golden", v.golden_file, v.golden_stops)}${fig(v.new, "new", v.new_file, v.new_stops)}${diffFig(v)}` +
+      `${fig(v.abs, "|new − golden|, scaled: white is the largest difference" + (v.largest ? ` (${v.largest})` : ""))}` +
+      `${fig(v.signed, "new − golden: blue darker, white unchanged, red brighter, scaled to the largest")}` +
+      `${heatFig(v)}${fig(v.regions, "region map")}`;
     if (!brief && v.golden && v.new && !v.identical) {
       h += `<figure><div class=swap><img class=golden src="${esc(url(v.golden))}" alt=golden${exposed(v.golden_file, v.golden_stops)}><img class=new src="${esc(url(v.new))}" alt=new${exposed(v.new_file, v.new_stops)}></div><figcaption>golden; hover for new</figcaption></figure>`;
       h += `<figure><div class=slider><img src="${esc(url(v.golden))}" alt=golden${exposed(v.golden_file, v.golden_stops)}><img class=top src="${esc(url(v.new))}" alt=new${exposed(v.new_file, v.new_stops)}><input type=range min=0 max=100 value=50 aria-label="new vs golden"></div><figcaption>slider: new (left) over golden</figcaption></figure>`;
