@@ -49,7 +49,7 @@ Outputs parse_outputs(const std::string& csv) {
 struct Renderer::State {
   std::unique_ptr<GlContext> context = make_gl_context(gl_choice());
   GBufferPass gbuffer_pass;
-  DepthGBufferPass depth_gbuffer_pass;
+  std::unique_ptr<DepthGBufferPass> depth_gbuffer_pass;  // compiled on first use
   // The blur's kernel suits the device: runs of pixels on a CPU rasteriser, shared-memory
   // tiles on a GPU (blur_pass.hpp). Made on first use, when the context can name its device.
   std::unique_ptr<BlurPass> blur_pass;
@@ -168,7 +168,8 @@ Images Renderer::render(const Scene& scene, const View& view, const RenderSettin
   if (s.gbuffer == GBufferKind::kDepth) {
     const float albedo[4] = {0.8f, 0.8f, 0.8f, 1};  // the depth pass has no colour
     glClearTexImage(st.gbuffer.albedo.get(), 0, GL_RGBA, GL_FLOAT, albedo);
-    for (PassTimer& t : st.depth_gbuffer_pass.run(gpu_scene, camera, st.gbuffer))
+    if (!st.depth_gbuffer_pass) st.depth_gbuffer_pass = std::make_unique<DepthGBufferPass>();
+    for (PassTimer& t : st.depth_gbuffer_pass->run(gpu_scene, camera, st.gbuffer))
       timers.push_back(std::move(t));
   } else {
     PassTimer gbuffer_timer("gbuffer");
