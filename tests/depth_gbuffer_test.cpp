@@ -14,6 +14,12 @@
 namespace aosuite::renderer {
 namespace {
 
+// One GL context for the whole program.
+Renderer& shared_renderer() {
+  static Renderer r;
+  return r;
+}
+
 template <typename T>
 std::vector<T> read(const Texture& t, GLenum format, int w, int h) {
   std::vector<T> v(static_cast<std::size_t>(w) * static_cast<std::size_t>(h));
@@ -37,8 +43,7 @@ struct Comparison {
 };
 
 Comparison compare_gbuffers(const char* scene_name, std::size_t view, int w, int h) {
-  static Renderer context;  // makes a GL context current
-  (void)context;
+  shared_renderer();  // makes the GL context current
   const Scene scene = builtin_scene(scene_name);
   const GpuScene gpu(scene);
   const Camera camera = make_camera(scene.views.at(view), w, h);
@@ -103,10 +108,7 @@ TEST(DepthGBuffer, NamesParseBack) {
 // stays close to the full G-buffer's for every screen-space technique (the estimators see the
 // same depths and nearly the same normals), with no NaN, and its lit images carry no colour.
 TEST(DepthGBuffer, FramesOverItMatchTheFullGBuffersAo) {
-  Renderer& r = []() -> Renderer& {
-    static Renderer renderer;
-    return renderer;
-  }();
+  Renderer& r = shared_renderer();
   const Scene village = builtin_scene("village");
   for (const TechniqueInfo& t : techniques()) {
     if (!t.make_compute_pass) continue;  // screen-space techniques only
