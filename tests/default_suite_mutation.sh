@@ -10,8 +10,8 @@ src=$1 aosuite=$2 work=$3
 rm -rf "$work"
 mkdir -p "$work"
 cp -r "$src/renderer/passes/shaders" "$work/shaders"
-grep -q '0\.457833362' "$work/shaders/blur.comp"
-sed -i 's/0\.457833362/0.547833362/' "$work/shaders/blur.comp"
+grep -q '0\.457833362' "$work/shaders/blur.glsl"
+sed -i 's/0\.457833362/0.547833362/' "$work/shaders/blur.glsl"
 set +e
 AOSUITE_SHADER_DIR="$work/shaders" "$aosuite" check "$src/suites/default.toml" \
   --filter '^village-street-' --report "$work/report" --no-reuse >"$work/out.txt"

@@ -381,7 +381,7 @@ class BlurFixture {
 
  public:
   // The blur's analytic kernel: a Gaussian of sigma 4 px over taps -10..10, from its
-  // definition rather than from blur.comp's table.
+  // definition rather than from blur.glsl's table.
   static double gaussian(int i) { return i < -10 || i > 10 ? 0 : std::exp(-i * i / 32.0); }
   static double gaussian_sum() {
     double s = 0;
