@@ -46,6 +46,7 @@ struct HarnessArgs {
   bool force = false, from_report = false, failed = false, single_file = false;
   bool wait = false;  // for a folder another run holds, instead of failing at once
   std::string annotations = "auto";
+  std::string report_images;  // all|failures; empty: failures under CI, else all
   // bless --failed/--from-report with no suite named: the suite name the report's results.json
   // gives, which the suite file it names must carry too.
   std::string report_suite;
@@ -170,6 +171,17 @@ hs::RunOptions run_options(const hs::Suite& suite, const HarnessArgs& a) {
   o.jobs = a.jobs;
   o.report_dir = a.report.empty() ? fs::path("reports") / suite.name : fs::path(a.report);
   o.diff_all = a.diff_all;
+  // Under CI the report is an artifact someone downloads: only what needs a reviewer's eyes.
+  const char* ci = std::getenv("CI");
+  const bool under_ci = ci && *ci && std::string_view(ci) != "false";
+  const std::string images = !a.report_images.empty()  ? a.report_images
+                             : under_ci && !a.diff_all ? "failures"
+                                                       : "all";
+  if (images == "failures" && a.diff_all) {
+    throw std::invalid_argument(
+        "--diff-all writes passing cases' diffs, which --report-images failures leaves out");
+  }
+  o.passing_images = images == "all";
   o.reuse = !a.no_reuse;
   o.retries = a.retries;
   return o;
@@ -598,6 +610,12 @@ void add_check_command(CLI::App& app, int& rc) {
   add_selection_options(cmd, *a);
   cmd->add_option("--junit", a->junit, "also write JUnit XML here")->option_text("FILE");
   cmd->add_flag("--diff-all", a->diff_all, "write diff images for passing cases too");
+  cmd->add_option("--report-images", a->report_images,
+                  "which cases keep their images in the report: all, or failures (failing, new, "
+                  "warning, flaky and unjudged cases; passing ones keep their numbers and their "
+                  "goldens' paths). Default: failures when $CI is set, else all")
+      ->option_text("all|failures")
+      ->check(CLI::IsMember({"all", "failures"}));
   cmd->add_flag("--list", a->list, "print the selected case ids and stop");
   cmd->add_option("--retries", a->retries,
                   "run a failing case up to N more times; one that then passes is FLAKY")

@@ -20,7 +20,7 @@ namespace aosuite::harness {
 namespace fs = std::filesystem;
 
 std::string ext_of(const Case& c, std::string_view image) {
-  return c.source ? c.source->ext : c.made->ext(image);
+  return c.source ? c.source->exts.at(std::string(image)) : c.made->ext(image);
 }
 
 std::vector<std::string> kept_images(const Case& c) {
@@ -119,8 +119,9 @@ void produce_images(const Case& c, const fs::path& case_dir, CaseResult& r, Case
     if (!src.follow_links)
       check_no_link_out(from[i], staging ? staging->path() : src.dir, kFollowLinks);
     out.bytes[name] = read_regular_file(from[i]);
-    if (src.ext == ".png") check_png(out.bytes[name], from[i].string());
-    keep_in_report(case_dir / (name + src.ext), out.bytes[name]);
+    const std::string& ext = src.exts.at(name);
+    if (ext == ".png") check_png(out.bytes[name], from[i].string());
+    keep_in_report(case_dir / (name + ext), out.bytes[name]);
   }
 }
 
@@ -178,7 +179,8 @@ CaseResult result_skeleton(const Case& c) {
       for (const fs::path& f : src.files) r.source += (r.source.empty() ? "" : " ") + f.string();
     }
     for (const auto& [k, v] : c.values.items()) r.params[k] = v;
-    for (const std::string& image : c.images) r.files[image] = c.id + "/" + image + src.ext;
+    for (const std::string& image : c.images)
+      r.files[image] = c.id + "/" + image + src.exts.at(image);
     return r;
   }
   r.kind = std::string(c.kind->name());

@@ -135,9 +135,9 @@ void judge_deleted(const Case& c, const RunOptions& o, CaseResult& r) {
   const fs::path case_dir = o.report_dir / "cases" / c.id;
   fs::create_directories(case_dir);
   r.files.clear();
-  keep_in_report(case_dir / ("golden_image" + c.source->ext),
-                 read_regular_file(c.source->golden_file));
-  r.files["golden:image"] = c.id + "/golden_image" + c.source->ext;
+  const std::string ext = ext_of(c, "image");
+  keep_in_report(case_dir / ("golden_image" + ext), read_regular_file(c.source->golden_file));
+  r.files["golden:image"] = c.id + "/golden_image" + ext;
   r.status = Status::kFail, r.deleted = true;
   r.message = "deleted: only in the expected folder";
   ImageVerdict v;

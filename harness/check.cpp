@@ -27,6 +27,16 @@ void check_once(const Suite& suite, const std::string& environment, const std::s
   judge_case(suite, c, platform, o, prev, r, images);
 }
 
+// --report-images failures: a passing case keeps its numbers and its goldens' paths, not its
+// images, so a CI artifact carries what a reviewer looks at. Its next run makes them again
+// (nothing to reuse). A folder that cannot be removed is only unreferenced bytes.
+void leave_out_images(const fs::path& report_dir, CaseResult& r) {
+  std::error_code ec;
+  fs::remove_all(report_dir / "cases" / r.id, ec);
+  r.files.clear();
+  r.images_left_out = true;
+}
+
 }  // namespace
 
 RunResults check(const Suite& suite, const RunOptions& o) {
@@ -63,6 +73,7 @@ RunResults check(const Suite& suite, const RunOptions& o) {
         if (awaits_approval(r.status)) {
           r.bless_command = bless_command(bless_prefix(suite), {c.id});
         }
+        if (!o.passing_images && r.status == Status::kPass) leave_out_images(o.report_dir, r);
       });
   write_results(o.report_dir, run);
   save_cache(o.report_dir, cache, run.cases);

@@ -153,6 +153,7 @@ json to_json(const CaseResult& c) {
       {"reused", c.reused},
       {"not_reused", c.not_reused},
       {"deleted", c.deleted},
+      {"images_left_out", c.images_left_out},
       {"seconds", c.seconds},
       {"bless_command", printable(c.bless_command)}};
 }
@@ -221,6 +222,7 @@ CaseResult case_from_json(const json& j) {
   c.reused = j.at("reused"), c.seconds = j.at("seconds");
   c.not_reused = j.value("not_reused", "");
   c.deleted = j.value("deleted", false);
+  c.images_left_out = j.value("images_left_out", false);
   c.bless_command = j.at("bless_command");
   return c;
 }

@@ -59,6 +59,9 @@ struct CaseResult {
   int attempts = 1;            // how often it ran (--retries)
   bool kept = false;           // bless: the case passes, so its goldens were left as they were
   bool deleted = false;        // folder mode: the image is only in the expected folder (a FAIL)
+  // --report-images failures and the case passed: its numbers are kept, its images are not
+  // (each verdict still names its golden).
+  bool images_left_out = false;
 };
 
 struct RunResults {

@@ -36,8 +36,11 @@ struct RunOptions {
   int jobs = 1;
   std::filesystem::path report_dir;
   bool diff_all = false;  // diff images for passing cases too
-  bool reuse = true;      // skip cases whose inputs and goldens are unchanged
-  int retries = 0;        // run a failing case (FAIL or ERROR) up to this many times more
+  // --report-images: whether a passing case keeps its images (and its golden's copy) in the
+  // report folder; false keeps only those of cases a reviewer must look at.
+  bool passing_images = true;
+  bool reuse = true;  // skip cases whose inputs and goldens are unchanged
+  int retries = 0;    // run a failing case (FAIL or ERROR) up to this many times more
   // The platform key goldens are looked up under; empty: AOSUITE_PLATFORM, else the GL
   // renderer's when the selection renders a scene.
   std::string platform;

@@ -157,7 +157,7 @@ Suite folder_suite(const fs::path& actual, const fs::path& expected, const Toler
     src->golden_file = expected / rel;
     src->files.push_back(actual / rel);
     src->deleted = !where.first;
-    src->ext = fs::path(rel).extension().string();
+    src->exts["image"] = fs::path(rel).extension().string();
     Case k;
     k.id = id;
     k.images = {"image"};

@@ -45,9 +45,9 @@ struct ImageSource {
   std::filesystem::path golden_file;
   bool deleted = false;
   std::string path;  // folder mode: the relative path both folders share
-  // The images' file type: ".png", or in folder mode ".exr", which is compared byte for byte
-  // (no decoder here: identical or changed).
-  std::string ext = ".png";
+  // Each image's file type (".png", ".exr", ...), by image name: a command may write one
+  // render as frame.png and frame.exr, each judged by the tolerance for its kind.
+  std::map<std::string, std::string> exts;
 };
 
 // Replaces the {placeholders} of an image case's command (`{{` and `}}` are braces). Throws

@@ -264,14 +264,15 @@ std::string image_name(const Reader& r, const toml::node& at, const fs::path& fi
                             kImageFormats + ")");
   }
   const std::string stem = file.stem().string();
-  static constexpr std::string_view kReportPrefixes[] = {"golden_", "diff_",    "thumb_",
-                                                         "heat_",   "regions_", "ignored_"};
+  static constexpr std::string_view kReportPrefixes[] = {
+      "golden_", "diff_", "thumb_", "heat_", "regions_", "ignored_", "abs_", "signed_"};
   if (!valid_name(stem) || stem == "case" ||
       std::ranges::any_of(kReportPrefixes,
                           [&](std::string_view p) { return stem.starts_with(p); })) {
-    r.fail(at.source(), "image file name '" + printable(file.filename().string()) +
-                            "' must be letters, digits, - _ . and not start with '.', golden_, "
-                            "diff_, thumb_, heat_, regions_ or ignored_ (the report's files)");
+    r.fail(at.source(),
+           "image file name '" + printable(file.filename().string()) +
+               "' must be letters, digits, - _ . and not start with '.', golden_, "
+               "diff_, thumb_, heat_, regions_, ignored_, abs_ or signed_ (the report's files)");
   }
   return stem;
 }
@@ -394,17 +395,19 @@ Case image_case(const Reader& r, const fs::path& dir, const toml::table& t, Comm
       k.images.push_back(image_name(r, *files, f));
     }
   }
-  // One file type per case: 8-bit images (Resemble and the metrics), or 16-bit and float ones
-  // (the metrics, else bytes).
+  // Each image keeps its file type: 8-bit ones are judged by Resemble and the metrics, 16-bit
+  // and float ones by the metrics ([tolerance.float]), else byte for byte. One render written
+  // as frame.png and frame.exr is two images, named apart by their types: frame_png, frame_exr.
   const std::vector<std::string>& names =
       command ? src->outputs : std::vector<std::string>(src->files.begin(), src->files.end());
   if (names.empty()) r.fail(t.source(), "an image case needs at least one image");
-  src->ext = fs::path(names.front()).extension().string();
-  for (const std::string& n : names) {
-    if (fs::path(n).extension() != src->ext) {
-      r.fail((command ? *t.get("outputs") : *files).source(),
-             "a case's images are all of one file type (all .png, all .exr, ...)");
-    }
+  const auto type = [](const std::string& file) { return fs::path(file).extension().string(); };
+  std::map<std::string, std::set<std::string>> types;  // stem -> its files' types
+  for (const std::string& n : names) types[fs::path(n).stem().string()].insert(type(n));
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    const std::string ext = type(names[i]);
+    if (types.at(k.images[i]).size() > 1) k.images[i] += "_" + ext.substr(1);
+    src->exts[k.images[i]] = ext;
   }
   std::set<std::string> seen;
   for (const std::string& image : k.images) {

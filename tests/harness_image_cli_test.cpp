@@ -622,6 +622,97 @@ outputs = ["x.png"]
   EXPECT_NE(r.out.find("chart.png: is a device, not a regular file"), std::string::npos) << r.out;
 }
 
+// Under CI (or --report-images failures) the report keeps the images of the cases a reviewer
+// must look at; a passing case keeps its numbers and names its golden, and no image: the
+// artifact CI uploads is what needs review. --report-images all, or --diff-all, keep them all.
+TEST_F(ImageCases, UnderCiOnlyCasesToReviewKeepTheirImages) {
+  for (const char* d : {"actual", "expected"}) fs::create_directories(dir_ / d);
+  const cv::Mat red = flat(8, 6, {255, 0, 0, 255});
+  cv::Mat near = red.clone(), changed = red.clone();
+  near.at<cv::Vec4b>(2, 3) = {250, 0, 0, 255};  // within the default channel delta: passes
+  changed.rowRange(0, 3).setTo(cv::Scalar(0, 255, 0, 255));
+  for (const char* name : {"same.png", "near.png", "changed.png"})
+    write_png_rgba8(dir_ / "expected" / name, red);
+  write_png_rgba8(dir_ / "actual" / "same.png", red);
+  write_png_rgba8(dir_ / "actual" / "near.png", near);
+  write_png_rgba8(dir_ / "actual" / "changed.png", changed);
+  const std::string check = "check --actual actual --expected expected --report rep";
+  for (int run = 0; run < 2; ++run) {  // the second: nothing left to reuse, the same verdicts
+    const test::Outcome r = aosuite(check, "CI=true");
+    ASSERT_EQ(r.rc, 1) << r.out << r.err;
+    EXPECT_FALSE(fs::exists(dir_ / "rep" / "cases" / "same.png"));
+    EXPECT_FALSE(fs::exists(dir_ / "rep" / "cases" / "near.png"));
+    EXPECT_TRUE(fs::exists(dir_ / "rep" / "cases" / "changed.png" / "image.png"));
+    EXPECT_TRUE(fs::exists(dir_ / "rep" / "cases" / "changed.png" / "golden_image.png"));
+    const auto results = nlohmann::json::parse(read_text(dir_ / "rep" / "results.json"));
+    for (const nlohmann::json& c : results.at("cases")) {
+      const bool passed = c.at("status") == "PASS";
+      EXPECT_EQ(c.at("images_left_out"), passed) << c.at("id");
+      EXPECT_EQ(c.at("files").empty(), passed) << c.at("id");
+      EXPECT_EQ(c.at("images").at(0).at("golden"), "expected/" + c.at("id").get<std::string>());
+      if (c.at("id") == "near.png") {
+        EXPECT_EQ(c.at("images").at(0).at("max_channel_delta"), 5);
+      }
+    }
+  }
+  EXPECT_EQ(aosuite(check + " --report-images all", "CI=true").rc, 1);
+  EXPECT_TRUE(fs::exists(dir_ / "rep" / "cases" / "near.png" / "golden_image.png"));
+  EXPECT_EQ(aosuite(check, "env -u CI").rc, 1);
+  EXPECT_TRUE(fs::exists(dir_ / "rep" / "cases" / "same.png" / "image.png"));
+  fs::remove_all(dir_ / "rep");
+  EXPECT_EQ(aosuite(check + " --diff-all", "CI=true").rc, 1);
+  EXPECT_TRUE(fs::exists(dir_ / "rep" / "cases" / "near.png" / "golden_image.png"));
+  const test::Outcome both = aosuite(check + " --diff-all --report-images failures");
+  EXPECT_EQ(both.rc, 2) << both.out << both.err;
+  EXPECT_NE(both.err.find("--diff-all writes passing cases' diffs"), std::string::npos) << both.err;
+}
+
+// One render written as frame.png and frame.exr is one case of two images, named apart by their
+// types, each judged by the tolerance for its kind: the PNG by Resemble's limits, the EXR by
+// [tolerance.float]'s gates.
+TEST_F(ImageCases, ACommandMayWriteSeveralFileTypes) {
+  test::write_exr(dir_ / "s" / "ao.exr", 8, 6, {"Y"}, std::vector<float>(48, 0.5f));
+  std::ofstream(dir_ / "s" / "draw2.sh") << R"SH(#!/bin/sh
+cp "$2/red.png" "$1/frame.png" && cp "$2/ao.exr" "$1/frame.exr"
+)SH";
+  std::ofstream(dir_ / "s" / "t.toml") << R"(
+[[case]]
+name = "frame"
+command = ["sh", "{suite_dir}/draw2.sh", "{out}", "{suite_dir}"]
+outputs = ["frame.png", "frame.exr"]
+inputs = ["draw2.sh", "red.png", "ao.exr"]
+[case.tolerance]
+max_channel_delta = 8
+float = { rmse = { max = 0.01 } }
+)";
+  test::Outcome r = aosuite("check s/t.toml");
+  ASSERT_EQ(r.rc, 1) << r.out << r.err;
+  ASSERT_EQ(aosuite("bless s/t.toml").rc, 0);
+  const fs::path goldens = dir_ / "s" / "goldens" / "t" / "frame";
+  EXPECT_TRUE(fs::exists(goldens / "frame_png.png"));
+  EXPECT_TRUE(fs::exists(goldens / "frame_exr.exr"));
+  EXPECT_EQ(aosuite("check s/t.toml").rc, 0);
+  // The EXR moves within its float gate, the PNG within its channel delta: a pass.
+  test::write_exr(dir_ / "s" / "ao.exr", 8, 6, {"Y"}, std::vector<float>(48, 0.505f));
+  cv::Mat near = flat(8, 6, {255, 0, 0, 255});
+  near.at<cv::Vec4b>(1, 1) = {251, 0, 0, 255};
+  write_png_rgba8(dir_ / "s" / "red.png", near);
+  r = aosuite("check s/t.toml");
+  EXPECT_EQ(r.rc, 0) << r.out << r.err;
+  // Beyond it: a failure that names the EXR's gate, not the PNG.
+  test::write_exr(dir_ / "s" / "ao.exr", 8, 6, {"Y"}, std::vector<float>(48, 0.6f));
+  r = aosuite("check s/t.toml");
+  EXPECT_EQ(r.rc, 1) << r.out << r.err;
+  const auto results = nlohmann::json::parse(read_text(dir_ / "reports" / "t" / "results.json"));
+  const nlohmann::json& images = results.at("cases").at(0).at("images");
+  ASSERT_EQ(images.size(), 2u);
+  EXPECT_EQ(images.at(0).at("image"), "frame_png");
+  EXPECT_EQ(images.at(0).at("status"), "PASS");
+  EXPECT_EQ(images.at(1).at("image"), "frame_exr");
+  EXPECT_EQ(images.at(1).at("status"), "FAIL");
+  EXPECT_EQ(images.at(1).at("gates").at(0).at("metric"), "rmse") << images.at(1);
+}
+
 // A reader that goes away (`| head -1`) does not stop a bless half way: every case is
 // blessed and the exit status is bless's own, not SIGPIPE's.
 TEST_F(ImageCases, BlessIntoAClosedPipeBlessesEveryCase) {
