@@ -37,6 +37,26 @@ void leave_out_images(const fs::path& report_dir, CaseResult& r) {
   r.images_left_out = true;
 }
 
+// Before a case runs again, its failing attempt's files are renamed attempt<k>_<file> in its
+// report folder, so the report shows what failed beside what then passed.
+Attempt keep_attempt(const fs::path& report_dir, const CaseResult& r, int k) {
+  Attempt a{r.status, r.message, {}};
+  const std::string prefix = fmt::format("attempt{}_", k);
+  std::map<std::string, std::string> renamed;  // a golden identical to its image shares its file
+  for (const auto& [role, rel] : r.files) {
+    auto [it, fresh] = renamed.try_emplace(rel);
+    if (fresh) {
+      const fs::path from = report_dir / "cases" / rel;
+      it->second = fs::path(rel).parent_path() / (prefix + from.filename().string());
+      std::error_code ec;
+      fs::rename(from, report_dir / "cases" / it->second, ec);
+      if (ec) it->second.clear();  // not kept (never made): the page shows none
+    }
+    if (!it->second.empty()) a.files[role] = it->second;
+  }
+  return a;
+}
+
 }  // namespace
 
 RunResults check(const Suite& suite, const RunOptions& o) {
@@ -58,16 +78,18 @@ RunResults check(const Suite& suite, const RunOptions& o) {
           }
         };
         attempt(o, r);
-        const CaseResult first_try = r;
+        std::vector<Attempt> failed;
         for (int k = 1; k <= o.retries && (r.status == Status::kFail || r.status == Status::kError);
              ++k) {
+          failed.push_back(keep_attempt(o.report_dir, r, k));
           r = result_skeleton(c);
           attempt(again, r);
           r.attempts = k + 1;
+          r.failed_attempts = failed;
           if (r.status == Status::kPass || r.status == Status::kWarn) {
             r.status = Status::kFlaky;
             r.message =
-                fmt::format("failed, then passed on attempt {}: {}", k + 1, first_try.message);
+                fmt::format("failed, then passed on attempt {}: {}", k + 1, failed.front().message);
           }
         }
         if (awaits_approval(r.status)) {

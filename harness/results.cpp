@@ -95,6 +95,11 @@ ImageVerdict verdict_from_json(const json& j) {
 
 json to_json(const CaseResult& c) {
   json images = json::array(), times = json::array(), ignore = json::array();
+  json attempts = json::array();
+  for (const Attempt& a : c.failed_attempts) {
+    attempts.push_back(
+        {{"status", status_name(a.status)}, {"message", printable(a.message)}, {"files", a.files}});
+  }
   for (const ImageVerdict& v : c.images) images.push_back(to_json(v));
   for (const Timing& t : c.times) times.push_back({{"stage", t.stage}, {"ms", t.ms}});
   json labels = json::array();
@@ -119,6 +124,7 @@ json to_json(const CaseResult& c) {
       {"source", printable(c.source)},
       {"exit_status", c.exit_status},
       {"attempts", c.attempts},
+      {"failed_attempts", attempts},
       {"command_stderr", printable_lines(c.command_stderr)},
       {"labels", labels},
       {"width", c.width},
@@ -206,13 +212,22 @@ CaseResult case_from_json(const json& j) {
   c.status = parse_status(j.at("status").get<std::string>());
   c.message = j.at("message");
   for (const json& v : j.at("images")) c.images.push_back(verdict_from_json(v));
-  c.files = j.at("files").get<std::map<std::string, std::string>>();
-  for (const auto& [role, file] : c.files) {
-    const fs::path f(file);
-    if (f.parent_path() != c.id || !valid_name(f.filename().string())) {
-      throw std::runtime_error("case '" + c.id + "': file '" + printable(file) +
-                               "' is not inside its case folder");
+  // A report's files, each a plain name inside its case's folder (a merge copies that folder).
+  const auto files_at = [&](const json& files) {
+    auto out = files.get<std::map<std::string, std::string>>();
+    for (const auto& [role, file] : out) {
+      const fs::path f(file);
+      if (f.parent_path() != c.id || !valid_name(f.filename().string())) {
+        throw std::runtime_error("case '" + c.id + "': file '" + printable(file) +
+                                 "' is not inside its case folder");
+      }
     }
+    return out;
+  };
+  c.files = files_at(j.at("files"));
+  for (const json& a : j.value("failed_attempts", json::array())) {
+    c.failed_attempts.push_back({parse_status(a.at("status").get<std::string>()), a.at("message"),
+                                 files_at(a.at("files"))});
   }
   for (const json& t2 : j.at("times")) c.times.push_back({t2.at("stage"), t2.at("ms")});
   c.figures = j.at("figures").get<std::map<std::string, double>>();

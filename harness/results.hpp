@@ -19,6 +19,14 @@ struct Timing {
   double ms = 0;
 };
 
+// A failing attempt of a case that was run again (--retries): what it said and the images it
+// made, kept under attempt<k>_ names in the case's report folder.
+struct Attempt {
+  Status status = Status::kError;
+  std::string message;
+  std::map<std::string, std::string> files;  // as CaseResult::files
+};
+
 struct CaseResult {
   std::string id;
   // "command" (files a command wrote), "files" (files on disk), "folder" (folder mode: one
@@ -53,12 +61,13 @@ struct CaseResult {
   // a command case that declares neither `inputs` nor `env` is never reused.
   std::string not_reused;
   double seconds = 0;
-  std::string bless_command;   // set for cases that are not passing
-  int exit_status = -1;        // a command case's exit status (-1: none ran)
-  std::string command_stderr;  // the end of what its command wrote to stderr
-  int attempts = 1;            // how often it ran (--retries)
-  bool kept = false;           // bless: the case passes, so its goldens were left as they were
-  bool deleted = false;        // folder mode: the image is only in the expected folder (a FAIL)
+  std::string bless_command;             // set for cases that are not passing
+  int exit_status = -1;                  // a command case's exit status (-1: none ran)
+  std::string command_stderr;            // the end of what its command wrote to stderr
+  int attempts = 1;                      // how often it ran (--retries)
+  std::vector<Attempt> failed_attempts;  // each attempt before the last, in order
+  bool kept = false;     // bless: the case passes, so its goldens were left as they were
+  bool deleted = false;  // folder mode: the image is only in the expected folder (a FAIL)
   // --report-images failures and the case passed: its numbers are kept, its images are not
   // (each verdict still names its golden).
   bool images_left_out = false;

@@ -4,6 +4,7 @@
 #include <toml++/toml.h>
 
 #include <algorithm>
+#include <cctype>
 #include <set>
 #include <stdexcept>
 #include <tuple>
@@ -266,13 +267,15 @@ std::string image_name(const Reader& r, const toml::node& at, const fs::path& fi
   const std::string stem = file.stem().string();
   static constexpr std::string_view kReportPrefixes[] = {
       "golden_", "diff_", "thumb_", "heat_", "regions_", "ignored_", "abs_", "signed_"};
-  if (!valid_name(stem) || stem == "case" ||
+  // attempt<k>_: a retried case's failing attempt (check --retries).
+  const bool attempt = stem.starts_with("attempt") && stem.size() > 7 && std::isdigit(stem[7]);
+  if (!valid_name(stem) || stem == "case" || attempt ||
       std::ranges::any_of(kReportPrefixes,
                           [&](std::string_view p) { return stem.starts_with(p); })) {
-    r.fail(at.source(),
-           "image file name '" + printable(file.filename().string()) +
-               "' must be letters, digits, - _ . and not start with '.', golden_, "
-               "diff_, thumb_, heat_, regions_, ignored_, abs_ or signed_ (the report's files)");
+    r.fail(at.source(), "image file name '" + printable(file.filename().string()) +
+                            "' must be letters, digits, - _ . and not start with '.', golden_, "
+                            "diff_, thumb_, heat_, regions_, ignored_, abs_, signed_ or "
+                            "attempt<k> (the report's files)");
   }
   return stem;
 }

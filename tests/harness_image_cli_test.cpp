@@ -1544,6 +1544,16 @@ outputs = ["w.png"]
     EXPECT_EQ(c["attempts"], 2);
     EXPECT_NE(c["message"].get<std::string>().find("failed, then passed on attempt 2"),
               std::string::npos);
+    // The failing attempt's images are kept beside the passing one's, and named in the results.
+    ASSERT_EQ(c["failed_attempts"].size(), 1u) << c;
+    const nlohmann::json& first = c["failed_attempts"][0];
+    EXPECT_EQ(first["status"], "FAIL");
+    EXPECT_EQ(first["files"]["w"], "wobbly/attempt1_w.png");
+    EXPECT_EQ(first["files"]["diff:w"], "wobbly/attempt1_diff_w.png");
+    EXPECT_EQ(first["files"]["golden:w"], "wobbly/attempt1_golden_w.png");
+    const fs::path folder = dir_ / "reports" / "t" / "cases" / "wobbly";
+    EXPECT_EQ(read_file(folder / "attempt1_w.png"), read_file(dir_ / "s" / "green.png"));
+    EXPECT_EQ(read_file(folder / "w.png"), read_file(dir_ / "s" / "red.png"));
   }
   const std::string junit = read_text(dir_ / "j.xml");
   EXPECT_NE(junit.find("failures=\"0\""), std::string::npos) << junit;
