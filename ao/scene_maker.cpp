@@ -38,7 +38,8 @@ class SceneMaker final : public harness::Maker {
     rd::RenderSettings s;
     s.width = c.width, s.height = c.height, s.technique = sc.technique, s.params = sc.params;
     const bool ao_float = std::ranges::count(c.images, "ao_float") > 0;
-    s.outputs = {.no_ao = true, .with_ao = true, .ao_only = true, .ao_float = ao_float};
+    s.outputs = {
+        .no_ao = true, .with_ao = true, .ao_only = true, .ao_float = ao_float, .pass_hashes = true};
     const rd::View& view = rd::find_view(*sc.scene, sc.view);
     rd::Images img = renderer_.render(*sc.scene, view, s);
     // An empty frame is never a silent pass: its golden would be an image of the background.
@@ -68,6 +69,7 @@ class SceneMaker final : public harness::Maker {
       out.bytes["ao_float"] = read_file(exr);
     }
     for (const rd::PassTime& t : img.times) r.times.push_back({t.pass + " (GPU)", t.gpu_ms});
+    r.pass_hashes = img.pass_hashes;
     // How much of the picture AO changes (the thesis's Tables 11-14).
     r.figures["ao_effect_less"] = raw_mismatch(img.no_ao, img.with_ao, resemble::Mode::kLess);
     r.figures["ao_effect_nothing"] = raw_mismatch(img.no_ao, img.with_ao, resemble::Mode::kNothing);

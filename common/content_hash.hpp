@@ -27,6 +27,11 @@ class ContentHash {
     XXH3_64bits_update(state_.get(), v.data(), v.size_bytes());
     return *this;
   }
+  // A span of mutable elements hashes their bytes too, never the span object itself.
+  template <typename T>
+  requires(!std::is_const_v<T>) ContentHash& add(std::span<T> v) {
+    return add(std::span<const T>(v));
+  }
   ContentHash& add(std::string_view s) { return add(std::span<const char>(s.data(), s.size())); }
   template <typename T>
   requires std::is_trivially_copyable_v<T> ContentHash& add(const T& v) {

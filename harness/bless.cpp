@@ -30,10 +30,12 @@ void write_case_goldens(const Suite& suite, const Case& c, const std::string& pl
   std::string written;
   std::vector<std::vector<unsigned char>> blank_maps;
   blank_maps.reserve(c.images.size());
+  const std::vector<unsigned char> passes = pass_record_bytes(r.pass_hashes);
   for (const std::string& image : c.images) {
     const fs::path target = bless_target(suite, c, image, platform, tag);
     writes.emplace_back(target, images.bytes.at(image));
     written += (written.empty() ? "" : ", ") + writes.back().first.string();
+    if (!r.pass_hashes.empty()) writes.emplace_back(pass_record(target), passes);
     // Regions need a map beside the golden: a black one (every pixel unpainted) to paint,
     // never over one that exists.
     const fs::path map = region_map(target, image);
@@ -185,6 +187,7 @@ RunResults bless(const Suite& suite, const BlessOptions& b) {
                                      "); its goldens are untouched");
           }
           if (!deleted) read_reviewed_images(b.run.report_dir, c, it->second, images);
+          r.pass_hashes = it->second.pass_hashes;
         } else if (!deleted) {
           try {
             prepare_images(makers, environment, c, b.run, cache, r, images);

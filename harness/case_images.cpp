@@ -140,7 +140,7 @@ bool reuse_images(const Case& c, const CaseResult& prev, const fs::path& case_di
     if (bytes_hash(out.bytes[name]) != prev.image_hashes.at(name)) return false;
   }
   r.image_hashes = prev.image_hashes;
-  r.times = prev.times, r.figures = prev.figures;
+  r.times = prev.times, r.figures = prev.figures, r.pass_hashes = prev.pass_hashes;
   r.exit_status = prev.exit_status, r.command_stderr = prev.command_stderr;
   return true;
 }

@@ -124,6 +124,10 @@ void judge_case(const Suite& suite, const Case& c, const std::string& platform, 
     } else if (v.identical) {
       r.files["golden:" + name] = c.id + "/" + name + ext;
     }
+    if ((v.status == Status::kFail || v.status == Status::kWarn) && !r.pass_hashes.empty()) {
+      const std::string first = first_differing_pass(read_pass_record(v.golden), r.pass_hashes);
+      if (!first.empty()) v.message += "; " + first;
+    }
     if (r.message.empty() && v.status != Status::kPass) r.message = name + ": " + v.message;
     r.status = worst(r.status, v.status);
     v.diff = {}, v.heatmap = {};

@@ -156,6 +156,7 @@ json to_json(const CaseResult& c) {
       {"input_hash", c.input_hash},
       {"judge_hash", c.judge_hash},
       {"image_hashes", c.image_hashes},
+      {"pass_hashes", c.pass_hashes},
       {"reused", c.reused},
       {"not_reused", c.not_reused},
       {"deleted", c.deleted},
@@ -234,6 +235,7 @@ CaseResult case_from_json(const json& j) {
   c.input_hash = j.at("input_hash"), c.judge_hash = j.at("judge_hash");
   // Absent in older results: then nothing is reused, which only costs a render.
   c.image_hashes = j.value("image_hashes", std::map<std::string, std::string>{});
+  c.pass_hashes = j.value("pass_hashes", decltype(c.pass_hashes){});
   c.reused = j.at("reused"), c.seconds = j.at("seconds");
   c.not_reused = j.value("not_reused", "");
   c.deleted = j.value("deleted", false);

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "harness/judge.hpp"
+#include "harness/pass_record.hpp"
 
 namespace aosuite::harness {
 
@@ -56,6 +57,10 @@ struct CaseResult {
   // it: a later run reuses those files only while they still hold exactly these bytes (a bless,
   // or a run killed before its cache was saved, may have replaced them since).
   std::map<std::string, std::string> image_hashes;
+  // A rendered case's passes in pipeline order and the content hash of what each wrote
+  // (gbuffer, ao, blur, blend): bless keeps them beside the goldens, and a failing case names
+  // the first pass that differs from its golden's.
+  PassHashes pass_hashes;
   bool reused = false;  // inputs and goldens unchanged: nothing re-rendered
   // Why an unchanged-looking case was made again instead of reused ("" when it was not):
   // a command case that declares neither `inputs` nor `env` is never reused.

@@ -2,9 +2,11 @@
 
 #include <chrono>
 #include <cmath>
+#include <span>
 #include <sstream>
 #include <stdexcept>
 
+#include "common/content_hash.hpp"
 #include "renderer/gl/gl_context.hpp"
 #include "renderer/params.hpp"
 #include "renderer/passes/ao_pass.hpp"
@@ -116,6 +118,13 @@ cv::Mat read_texture(GLuint tex, int w, int h, GLenum format, GLenum type, int c
   return flipped;
 }
 
+std::string texels_hash(std::initializer_list<cv::Mat> texels) {
+  ContentHash h;
+  for (const cv::Mat& m : texels)
+    h.add(std::span<const unsigned char>(m.data, m.total() * m.elemSize()));
+  return h.hex();
+}
+
 void validate(const View& view, const RenderSettings& s) {
   auto fail = [](const std::string& why) { throw std::invalid_argument(why); };
   if (s.width < 1 || s.height < 1 || s.width > 16384 || s.height > 16384) {
@@ -190,6 +199,11 @@ Images Renderer::render(const Scene& scene, const View& view, const RenderSettin
            st.ao_pass(s.technique, pipeline).run(st.gbuffer, camera, s.params, ao_target))
         timers.push_back(std::move(t));
     }
+    if (s.outputs.pass_hashes) {  // before the blur overwrites it
+      out.pass_hashes.emplace_back(
+          "ao",
+          texels_hash({read_texture(st.ao.get(), s.width, s.height, GL_RED, GL_FLOAT, CV_32F)}));
+    }
     if (s.params.blur != Blur::kNone) {
       timers.push_back(st.blur(default_pipeline()).run(st.gbuffer, s.params.blur, st.ao.get()));
     }
@@ -216,6 +230,18 @@ Images Renderer::render(const Scene& scene, const View& view, const RenderSettin
   out.geometry_pixels = cv::countNonZero(out.depth > 0);
   if (s.outputs.normal)
     out.normal = read_texture(st.gbuffer.normal.get(), w, h, GL_RGB, GL_FLOAT, CV_32FC3);
+  if (s.outputs.pass_hashes) {
+    const auto floats = [&](const Texture& t, GLenum format, int type) {
+      return read_texture(t.get(), w, h, format, GL_FLOAT, type);
+    };
+    out.pass_hashes.emplace(out.pass_hashes.begin(), "gbuffer",
+                            texels_hash({out.depth, floats(st.gbuffer.normal, GL_RGBA, CV_32FC4),
+                                         rgba(st.gbuffer.albedo)}));
+    if (want_ao && s.params.blur != Blur::kNone)
+      out.pass_hashes.emplace_back("blur", texels_hash({floats(st.ao, GL_RED, CV_32F)}));
+    if (s.outputs.no_ao || s.outputs.with_ao || s.outputs.ao_only)
+      out.pass_hashes.emplace_back("blend", texels_hash({out.no_ao, out.with_ao, out.ao_only}));
+  }
   if (s.outputs.ao_float) {
     out.ao = read_texture(st.ao.get(), w, h, GL_RED, GL_FLOAT, CV_32F);
     // The shaders guard every division; should one ever slip, fail loudly, never write it.

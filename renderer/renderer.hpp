@@ -18,6 +18,9 @@ namespace aosuite::renderer {
 struct Outputs {
   bool no_ao = true, with_ao = true, ao_only = true, ao_float = true;
   bool normal = false;  // the G-buffer normal (for the ray-traced reference); never by "all"
+  // Each pass's output read back and hashed (Images::pass_hashes): what a failing case's first
+  // differing pass is found from. Costs a read-back between AO and blur; never by "all".
+  bool pass_hashes = false;
   bool needs_ao() const { return with_ao || ao_only || ao_float; }
 };
 Outputs parse_outputs(const std::string& csv);  // e.g. "no_ao,ao_float"; "all"
@@ -48,6 +51,9 @@ struct Images {
   std::vector<PassTime> times;  // each pass's GPU time
   double frame_ms = 0;          // wall time from the first pass's submission to the last one's end
   Pipeline pipeline = Pipeline::kFragment;  // the one that ran
+  // Outputs::pass_hashes: each pass that ran and the content hash of what it wrote, in pipeline
+  // order: gbuffer (depth, normal, albedo), ao (before the blur), blur, blend (the images).
+  std::vector<std::pair<std::string, std::string>> pass_hashes;
 };
 
 class Renderer {

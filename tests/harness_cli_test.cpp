@@ -68,11 +68,14 @@ TEST_F(HarnessCli, NewThenBlessedThenPassingThenReused) {
 
   r = aosuite("bless suites/t.toml --filter sao");
   EXPECT_EQ(r.rc, 0) << r.out << r.err;
-  EXPECT_EQ(goldens().size(), 2u);  // only the filtered cases
+  EXPECT_EQ(goldens().size(), 4u);  // only the filtered cases: each golden and its pass record
   r = aosuite("bless suites/t.toml");
   EXPECT_EQ(r.rc, 0) << r.out << r.err;
-  EXPECT_EQ(goldens().size(), 4u);
-  for (const auto& [path, bytes] : goldens()) EXPECT_EQ(path.filename(), "with_ao.png");
+  EXPECT_EQ(goldens().size(), 8u);
+  for (const auto& [path, bytes] : goldens()) {
+    EXPECT_TRUE(path.filename() == "with_ao.png" || path.filename() == "with_ao.passes.json")
+        << path;
+  }
 
   // Two render threads, two GL contexts: the same verdicts as one.
   r = aosuite("check suites/t.toml --junit junit.xml --jobs 2 --no-reuse");
@@ -96,6 +99,8 @@ TEST_F(HarnessCli, ChangedShaderFailsWithAReadableReportAndBlessMakesItPass) {
   test::Outcome r = aosuite("check suites/t.toml --single-file", broken());
   EXPECT_EQ(r.rc, 1) << r.out << r.err;
   EXPECT_NE(r.out.find("2 passed, 2 failed"), std::string::npos) << r.out;  // the SAO cases
+  // The first pass that differs from the golden's, from the hashes bless kept beside it.
+  EXPECT_NE(r.out.find("; ao differs (gbuffer identical)"), std::string::npos) << r.out;
   EXPECT_EQ(goldens(), before);  // a failing check touches no golden
 
   // The page as a person sees it: load it in headless Chromium, let its script run.
@@ -243,7 +248,11 @@ TEST_F(HarnessCli, KilledBlessLeavesEveryGoldenWhole) {
       ASSERT_TRUE(after.contains(path)) << path << " lost after a kill at " << delay_ms << " ms";
       if (after.at(path) != bytes) {
         ++replaced;
-        EXPECT_NO_THROW(decode_png_rgba8(after.at(path), path.string())) << delay_ms << " ms";
+        if (path.extension() == ".png") {  // else a pass record (JSON), whole as well
+          EXPECT_NO_THROW(decode_png_rgba8(after.at(path), path.string())) << delay_ms << " ms";
+        } else {
+          EXPECT_TRUE(nlohmann::json::accept(after.at(path))) << path;
+        }
       }
     }
     for (const auto& [path, bytes] : after) {
