@@ -1,5 +1,6 @@
-// `aosuite tolerances suggest SUITE --report DIR...`: each case's tightest tolerance that passes
-// every given run, written beside the goldens for review (harness/tolerance_suggest.hpp). With
+// `aosuite tolerances suggest SUITE --report DIR...`: each case's tolerance that passes every
+// given run with a margin a held-back run needed, written into the last report folder for review
+// (harness/tolerance_suggest.hpp). With
 // no SUITE the reports are folder-mode runs, and the folder-mode flags of the loosest of those
 // tolerances are printed: folder mode judges every image by one.
 #include <fmt/format.h>
@@ -25,7 +26,7 @@ namespace hs = aosuite::harness;
 struct SuggestArgs {
   std::string suite, goldens, out;
   std::vector<std::string> reports;
-  double margin = 0;
+  std::optional<double> margin;
 };
 
 // "mismatch 0.5 -> 0.06511 %, max Δ 8 -> 3, flip max_mean 0.02 -> 0.01234": each limit the
@@ -73,8 +74,14 @@ int run_suggest(const SuggestArgs& a) {
   fmt::print("{:<{}}  runs  limits (now -> suggested)\n", "case", width);
   for (const hs::Suggestion& s : all) {
     suggested += s.reason.empty();
-    fmt::print("{:<{}}  {:>4}  {}\n", s.id, width, s.runs.size(),
-               s.reason.empty() ? limits_text(s) : "not suggested: " + s.reason);
+    if (!s.reason.empty()) {
+      fmt::print("{:<{}}  {:>4}  not suggested: {}\n", s.id, width, s.runs.size(), s.reason);
+      continue;
+    }
+    // The margin under the limits, and the limits it is not on.
+    fmt::print("{:<{}}  {:>4}  {}\n{:{}}{}\n", s.id, width, s.runs.size(), limits_text(s), "",
+               width + 8, hs::margin_text(s));
+    for (const std::string& n : s.margin_notes) fmt::print("{:{}}  {}\n", "", width + 8, n);
   }
   if (suggested == 0) {
     throw std::runtime_error(fmt::format(
@@ -83,8 +90,17 @@ int run_suggest(const SuggestArgs& a) {
         folders ? "the folders" : a.suite, reports.size(), reports.size() == 1 ? "" : "s"));
   }
   if (folders) return finish_folder_mode(all, suite, suggested);
+  // A report folder is the run's own, and a file in the goldens folder would read as a golden.
   const fs::path out =
-      a.out.empty() ? suite.goldens / "tolerances.suggested.toml" : fs::path(a.out);
+      a.out.empty() ? reports.back() / "tolerances.suggested.toml" : fs::path(a.out);
+  if (a.out.empty()) {
+    const fs::path in_goldens =
+        fs::weakly_canonical(out).lexically_relative(fs::weakly_canonical(suite.goldens));
+    if (!in_goldens.empty() && *in_goldens.begin() != "..") {
+      throw std::invalid_argument(hs::printable(out.string()) +
+                                  ": inside the goldens folder; name another file with --out");
+    }
+  }
   write_text(out, hs::suggestions_toml(suite, all, reports, options));
   fmt::print(
       "suggested tolerances for {} of {} cases from {} runs: {} (review it; the suite is "
@@ -100,8 +116,9 @@ void add_tolerances_command(CLI::App& app, int& rc) {
   cmd->require_subcommand(1);
   CLI::App* suggest = cmd->add_subcommand(
       "suggest",
-      "Propose each case's tightest tolerance that passes every given run of the suite (reports "
-      "of check), written beside the goldens for review. Exit status: 0 every case suggested, "
+      "Propose each case's tolerance that passes every given run of the suite (reports of "
+      "check), with the margin a run held back from the others needed, written into the last "
+      "report folder for review. Exit status: 0 every case suggested, "
       "1 some not (listed, with why), 2 none or bad input (nothing written).");
   auto a = std::make_shared<SuggestArgs>();
   suggest
@@ -115,11 +132,14 @@ void add_tolerances_command(CLI::App& app, int& rc) {
   suggest->add_option("--goldens", a->goldens, "goldens folder, if check was given --goldens")
       ->option_text("DIR");
   suggest
-      ->add_option("--out", a->out, "file to write (default: <goldens>/tolerances.suggested.toml)")
+      ->add_option("--out", a->out,
+                   "file to write (default: <last --report DIR>/tolerances.suggested.toml)")
       ->option_text("FILE");
   suggest
       ->add_option("--margin", a->margin,
-                   "headroom in % of each measured value (default 0: the tightest)")
+                   "headroom in % of each measured value (default: per case, how far the "
+                   "farthest run held back from the others fell from their limits; 0: the "
+                   "tightest)")
       ->check(CLI::Range(0.0, 1000.0))
       ->option_text("PERCENT");
   guarded(suggest, rc, "tolerances suggest", [a] { return run_suggest(*a); });

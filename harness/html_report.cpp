@@ -226,7 +226,8 @@ void write_html_report(const RunResults& run, const fs::path& report_dir,
                               {"signed", url(file_of(c, "signed:" + v.image))},
                               {"regions", url(file_of(c, "regions:" + v.image))},
                               {"ignored", url(file_of(c, "ignored:" + v.image))},
-                              {"gates", gates_json(v)}};
+                              {"gates", gates_json(v)},
+                              {"golden_path", printable(v.golden.string())}};
       picture(image, "new", file_of(c, v.image));
       picture(image, "golden", file_of(c, "golden:" + v.image));
       images.push_back(std::move(image));
@@ -241,6 +242,24 @@ void write_html_report(const RunResults& run, const fs::path& report_dir,
       const std::string show = shown(rel);
       thumb = url(thumbnail(cases_dir, show));
       if (show != rel) thumb_stops = stops_of_preview(show);
+    }
+    // Each failing attempt of a retried case: its verdict and the pictures it left.
+    nlohmann::json attempts = nlohmann::json::array();
+    for (const Attempt& a : c.failed_attempts) {
+      nlohmann::json pictures = nlohmann::json::array();
+      for (const ImageVerdict& v : c.images) {
+        const auto file = [&](const std::string& role) {
+          const auto it = a.files.find(role);
+          return it == a.files.end() ? std::string() : it->second;
+        };
+        nlohmann::json p = {{"image", v.image}, {"diff", url(file("diff:" + v.image))}};
+        picture(p, "new", file(v.image));
+        picture(p, "golden", file("golden:" + v.image));
+        pictures.push_back(std::move(p));
+      }
+      attempts.push_back({{"status", status_name(a.status)},
+                          {"message", printable(a.message)},
+                          {"images", pictures}});
     }
     nlohmann::json about = nlohmann::json::object();
     for (const auto& [label, value] : c.labels) about[printable(label)] = printable(value);
@@ -261,6 +280,8 @@ void write_html_report(const RunResults& run, const fs::path& report_dir,
                     {"exit", c.exit_status},
                     {"stderr", printable_lines(c.command_stderr)},
                     {"attempts", c.attempts},
+                    {"images_left_out", c.images_left_out},
+                    {"failed_attempts", attempts},
                     {"measured", nearest[order[n]].value},
                     {"limit", nearest[order[n]].limit},
                     {"margin", nearest[order[n]].margin},
@@ -313,13 +334,16 @@ void write_html_report(const RunResults& run, const fs::path& report_dir,
       "</span><input id=search type=search placeholder=\"filter: id, path, message (/)\" "
       "aria-label=filter> <span id=shown></span></nav>\n"
       "<p class=keys>Keys: j/k or ↓/↑ move, n/p next/previous failure, Enter open, Esc close, "
-      "x select, / filter, v switch view; in a case: f fit, 1 one-to-one, +/− zoom.</p>"
+      "x select, / filter, v switch view; in a case: f fit, 1 one-to-one, +/− zoom, m largest "
+      "difference, b flicker golden/new; drag a zoomed view to pan them all, the panel's edge to "
+      "resize it.</p>"
       "</header>\n<div id=approve><button id=select-failing>select shown FAIL/NEW</button> "
       "<button id=select-none>clear</button> <span id=selected>0 selected</span>: <code "
       "id=command></code> <button id=copy>copy</button> <span id=copied></span></div>\n";
   body +=
       "<main><div id=table-view><table id=cases><thead><tr><th></th><th>status</th><th>case</th>"
-      "<th>measured</th><th>limit</th><th>margin</th><th>max Δ</th><th>time s</th><th>image</th>"
+      "<th class=wide>measured</th><th class=wide>limit</th><th>margin</th><th>max Δ</th>"
+      "<th class=wide>time s</th><th>image</th>"
       "</tr></thead><tbody></tbody></table>\n<p id=more></p><noscript>This report needs "
       "JavaScript; results.json holds the same.</noscript>\n";
   // Each registered kind with cases here adds its own section (the AO bench: its tables).

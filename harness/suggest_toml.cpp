@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <nlohmann/json.hpp>
+
 #include "harness/escape.hpp"
 
 namespace aosuite::harness {
@@ -19,8 +21,47 @@ std::string region_toml(const Region& r) {
   return out + " }";
 }
 
-std::string case_toml(const Suggestion& s) {
-  std::string out = fmt::format("\n[\"{}\"]  # from {} runs\n", s.id, s.runs.size());
+// The keys of the tolerance that are not suggested, as the case has them now: the table
+// replaces the case's whole [case.tolerance], so what it leaves out would fall back to the
+// suite's [defaults.tolerance].
+std::string kept_keys(const Suite& suite, const Tolerance& t) {
+  std::string out;
+  if (!t.resemble) out += "resemble = false\n";
+  if (t.shift_radius != 0) out += fmt::format("shift_radius = {}\n", t.shift_radius);
+  if (t.allow_kind_change) out += "allow_kind_change = true\n";
+  if (t.foreground_only) out += "foreground_only = true\n";
+  if (!t.ignore.empty()) {
+    std::vector<std::string> boxes;
+    for (const resemble::Box& b : t.ignore)
+      boxes.push_back(fmt::format("[{}, {}, {}, {}]", b.left, b.top, b.right, b.bottom));
+    out += fmt::format("ignore = [{}]\n", fmt::join(boxes, ", "));
+  }
+  if (!t.mask.empty()) {  // as the suite names it: relative to its folder
+    const std::filesystem::path dir =
+        suite.file.parent_path().empty() ? "." : suite.file.parent_path();
+    out +=
+        "mask = " + nlohmann::json(t.mask.lexically_relative(dir).generic_string()).dump() + "\n";
+  }
+  std::vector<std::string> floats;
+  for (const metric::Gates& g : t.float_gates) floats.push_back(gates_toml(g));
+  if (!floats.empty()) out += fmt::format("float = {{ {} }}\n", fmt::join(floats, ", "));
+  const WarnLimits& w = t.warn;
+  std::vector<std::string> warn;
+  if (w.max_mismatch_percent < 100)
+    warn.push_back(fmt::format("max_mismatch_percent = {}", w.max_mismatch_percent));
+  if (w.max_channel_delta < 255)
+    warn.push_back(fmt::format("max_channel_delta = {}", w.max_channel_delta));
+  if (w.max_differing_pixels >= 0)
+    warn.push_back(fmt::format("differing_pixels = {}", w.max_differing_pixels));
+  for (const metric::Gates& g : w.gates) warn.push_back(gates_toml(g));
+  if (!warn.empty()) out += fmt::format("warn = {{ {} }}\n", fmt::join(warn, ", "));
+  return out;
+}
+
+std::string case_toml(const Suite& suite, const Suggestion& s) {
+  std::string out = fmt::format("\n# {}, from {} runs: {}\n", s.id, s.runs.size(), margin_text(s));
+  for (const std::string& n : s.margin_notes) out += "#   " + n + "\n";
+  out += "[case.tolerance]\n";
   const Tolerance &now = s.current, &next = s.proposed;
   if (next.resemble) {
     out += fmt::format("mode = \"{}\"\n", resemble::mode_name(next.mode));
@@ -52,11 +93,16 @@ std::string case_toml(const Suggestion& s) {
     out += line("regions." + next.regions[i].name, region_toml(next.regions[i]),
                 region_toml(now.regions[i]));
   }
+  out += kept_keys(suite, now);
   for (const std::string& k : s.kept) out += "# " + k + "\n";
   return out;
 }
 
 }  // namespace
+
+std::string margin_text(const Suggestion& s) {
+  return fmt::format("+{} % on each limit, {}", s.margin_percent, s.margin_why);
+}
 
 std::string gates_toml(const metric::Gates& g) {
   std::string out = std::string(g.metric->name) + " = {";
@@ -78,17 +124,21 @@ std::string suggestions_toml(const Suite& suite, const std::vector<Suggestion>& 
       suite.name, printable(suite.file.string()), reports.size());
   for (const std::filesystem::path& r : reports) out += "#   " + printable(r.string()) + "\n";
   out += fmt::format(
-      "# Each table is the tightest tolerance that passes every run of its case: the largest\n"
-      "# mismatch % and channel delta measured, each max_ gate's largest value and each min_\n"
-      "# gate's smallest{}, rounded outward to 4 significant digits. Review it, then copy a\n"
-      "# case's keys into its [case.tolerance]; ignore, mask and foreground_only stay as the\n"
-      "# suite has them. aosuite never reads this file: the suite and its goldens are unchanged.\n",
-      options.margin_percent > 0 ? fmt::format(", with a margin of {} %", options.margin_percent)
-                                 : "");
+      "# Each limit is the extreme its case's runs measured (the largest mismatch %, channel\n"
+      "# delta, means and max_ gate values, the least min_ ones) widened by a margin, then\n"
+      "# rounded outward to 4 significant digits. {}\n"
+      "# Each [case.tolerance] is complete: after review, paste it over the one of the [[case]]\n"
+      "# that makes the case named above it (or below that [[case]]'s keys, if it has none).\n"
+      "# aosuite never reads this file: the suite and its goldens are unchanged.\n",
+      options.margin_percent
+          ? fmt::format("The margin is {} % (--margin).", *options.margin_percent)
+          : "The margin is chosen per case: each run was\n"
+            "# held back in turn, and the farthest one fell from the limit the other runs set,\n"
+            "# relative to it, widens every limit that varied between runs (none that never did).");
   std::string skipped;
   for (const Suggestion& s : suggestions) {
     if (s.reason.empty()) {
-      out += case_toml(s);
+      out += case_toml(suite, s);
     } else {
       skipped += "#   " + s.id + ": " + s.reason + "\n";
     }

@@ -100,15 +100,71 @@ std::optional<double> value_of(const ImageVerdict& v, std::string_view region,
   return std::nullopt;
 }
 
-// The extremes over every run: what the limits must let through.
-struct Observed {
-  bool resemble = false;  // some image had Resemble's numbers
-  double mismatch = 0;
-  int delta = 0, least_delta = 255;  // the two-sided budgets' ends
-  double mean_shift = 0, mean_delta = 0;
-  long long pixels = 0, least_pixels = -1;
-  std::vector<std::optional<double>> limits;  // per limit, in for_each_limit's order
+// A limit the runs set: its name as the suite's keys say it, its side, whether it is a whole
+// number, and whether the tolerance has it (a two-sided budget's lower end, Resemble's keys).
+struct Stat {
+  std::string name;
+  bool is_max = true, whole = false, used = true;
 };
+
+// Resemble's stats, first in stats_of's order; the gates' limits follow from kGates on.
+enum : std::size_t {
+  kMismatch,
+  kDelta,
+  kLeastDelta,
+  kMeanShift,
+  kMeanDelta,
+  kPixels,
+  kLeastPixels,
+  kGates
+};
+
+std::string limit_name(std::string_view region, const metric::Gates& g, const metric::Limit& l) {
+  return fmt::format("{}{} {}_{}", region.empty() ? "" : std::string(region) + ": ", g.metric->name,
+                     l.is_max ? "max" : "min", l.stat);
+}
+
+std::vector<Stat> stats_of(const Tolerance& t) {
+  const bool r = t.resemble;
+  std::vector<Stat> out = {{"max_mismatch_percent", true, false, r},
+                           {"max_channel_delta", true, true, r},
+                           {"channel_delta min", false, true, r && t.min_channel_delta > 0},
+                           {"max_mean_shift", true, false, r},
+                           {"max_mean_delta", true, false, r},
+                           {"differing_pixels max", true, true, r && t.max_differing_pixels >= 0},
+                           {"differing_pixels min", false, true, r && t.min_differing_pixels > 0}};
+  for_each_limit(t, [&](std::string_view region, const metric::Gates& g, const metric::Limit& l) {
+    out.push_back({limit_name(region, g, l), l.is_max});
+  });
+  return out;
+}
+
+// Per stat, the extreme over some images and runs (the largest for a max limit, the least for
+// a min one): what its limit must let through; nothing where none measured it.
+using Extremes = std::vector<std::optional<double>>;
+
+void extend(std::optional<double>& extreme, double v, bool is_max) {
+  extreme = !extreme ? v : is_max ? std::max(*extreme, v) : std::min(*extreme, v);
+}
+
+// The extremes over `runs`, leaving out the run `skip`.
+Extremes merged(const std::vector<Stat>& stats, const std::vector<Extremes>& runs,
+                std::size_t skip = std::size_t(-1)) {
+  Extremes out(stats.size());
+  for (std::size_t r = 0; r < runs.size(); ++r)
+    for (std::size_t i = 0; i < stats.size(); ++i)
+      if (r != skip && runs[r][i]) extend(out[i], *runs[r][i], stats[i].is_max);
+  return out;
+}
+
+// The limit that lets `extreme` through, widened by `margin` % of it and rounded outward.
+double limit_for(const Stat& s, double extreme, double margin) {
+  const double v = extreme + (s.is_max ? 1 : -1) * std::abs(extreme) * margin / 100;
+  if (!s.whole) return round_outward(v, s.is_max);
+  // A margin is a ratio of measured values: 6 widened by 1/6 is 7, not 7 plus a rounding error.
+  const double snapped = std::abs(v - std::round(v)) < 1e-9 * std::abs(v) ? std::round(v) : v;
+  return s.is_max ? std::ceil(snapped) : std::max(0.0, std::floor(snapped));
+}
 
 bool same_judging(const Tolerance& a, const Tolerance& b) {
   const auto box = [](const resemble::Box& x) {
@@ -120,28 +176,26 @@ bool same_judging(const Tolerance& a, const Tolerance& b) {
 
 // Adds an image's value of each gated stat to the extremes; returns the first it lacks
 // ("edges: flip mean"), or "".
-std::string observe_gates(const Tolerance& t, const ImageVerdict& v, Observed& seen) {
-  std::size_t i = 0;
+std::string observe_gates(const Tolerance& t, const ImageVerdict& v, const std::vector<Stat>& stats,
+                          Extremes& seen) {
+  std::size_t i = kGates;
   std::string missing;
   for_each_limit(t, [&](std::string_view region, const metric::Gates& g, const metric::Limit& l) {
-    std::optional<double>& extreme = seen.limits[i++];
     const std::optional<double> value = value_of(v, region, g, l);
-    if (!value) {
-      if (missing.empty())
-        missing = fmt::format("{}{} {}", region.empty() ? "" : std::string(region) + ": ",
-                              g.metric->name, l.stat);
-    } else {
-      extreme = !extreme   ? *value
-                : l.is_max ? std::max(*extreme, *value)
-                           : std::min(*extreme, *value);
+    if (value) {
+      extend(seen[i], *value, stats[i].is_max);
+    } else if (missing.empty()) {
+      missing = fmt::format("{}{} {}", region.empty() ? "" : std::string(region) + ": ",
+                            g.metric->name, l.stat);
     }
+    ++i;
   });
   return missing;
 }
 
-// Adds one run's numbers for case `c`; returns why they cannot be used, or "".
+// One run's extremes of case `c` in `seen`; returns why they cannot be used, or "".
 std::string observe(const Suite& suite, const Case& c, const Run& run, const CaseResult& r,
-                    Observed& seen) {
+                    const std::vector<Stat>& stats, Extremes& seen) {
   const std::string at = run.name() + ": ";
   if (r.status == Status::kNew || r.status == Status::kError) {
     return at + std::string(status_name(r.status)) + " (" + printable(r.message) + ")";
@@ -171,79 +225,132 @@ std::string observe(const Suite& suite, const Case& c, const Run& run, const Cas
       if (o.stat == "nonfinite" && !o.pass) return at + image + ": " + o.text();
     }
     if (!v->mismatch_text.empty()) {
-      seen.resemble = true;
-      seen.mismatch = std::max(seen.mismatch, v->mismatch_percent);
-      seen.delta = std::max(seen.delta, v->max_channel_delta);
-      seen.mean_shift = std::max(seen.mean_shift, v->mean_shift);
-      seen.mean_delta = std::max(seen.mean_delta, v->mean_delta);
-      seen.least_delta = std::min(seen.least_delta, v->max_channel_delta);
-      seen.pixels = std::max(seen.pixels, v->differing_pixels);
-      seen.least_pixels = seen.least_pixels < 0 ? v->differing_pixels
-                                                : std::min(seen.least_pixels, v->differing_pixels);
+      const double delta = v->max_channel_delta, pixels = double(v->differing_pixels);
+      const std::pair<std::size_t, double> resemble[] = {{kMismatch, v->mismatch_percent},
+                                                         {kDelta, delta},
+                                                         {kLeastDelta, delta},
+                                                         {kMeanShift, v->mean_shift},
+                                                         {kMeanDelta, v->mean_delta},
+                                                         {kPixels, pixels},
+                                                         {kLeastPixels, pixels}};
+      for (const auto& [i, value] : resemble) extend(seen[i], value, stats[i].is_max);
     }
     if (v->identical) continue;  // passes any limit: nothing measured
-    if (const std::string lack = observe_gates(c.tolerance, *v, seen); !lack.empty())
+    if (const std::string lack = observe_gates(c.tolerance, *v, stats, seen); !lack.empty())
       return at + image + ": measured no " + lack + " (check again)";
   }
   return "";
 }
 
-// Sets `s.proposed` from the extremes; `s.reason` when a limit cannot be met.
-void propose(const Observed& seen, const SuggestOptions& o, Suggestion& s) {
-  const double up = 1 + o.margin_percent / 100;
+// The default margin, in % per stat. Each run is held back in turn and the limits are set from
+// the other runs (rounded outward, as always): how far the held-back run's value falls from
+// that limit, relative to it, is how far a next run may fall from the runs seen. On either
+// side: only the highest run ever lands above the others' limit, so that gap alone is one
+// sample (on 31 seeds of the noisy runs in tests/tolerances_suggest_test.cpp, 18 of 186 later
+// runs failed under it, 6 under the gap on either side). The case's margin is the farthest
+// over its stats: its images share one source of noise, and one stat's few values (often
+// tied, as whole numbers are) understate it. A stat that was the same in every run gets none.
+std::vector<double> held_back_margins(const std::vector<Stat>& stats,
+                                      const std::vector<Extremes>& runs, Suggestion& s) {
+  std::vector<Extremes> others;
+  for (std::size_t r = 0; r < runs.size(); ++r) others.push_back(merged(stats, runs, r));
+  const Extremes all = merged(stats, runs);
+  double widest = 0;
+  std::vector<bool> varied(stats.size());
+  std::vector<std::string> steady;
+  for (std::size_t i = 0; i < stats.size(); ++i) {
+    const Stat& st = stats[i];
+    if (!st.used || !all[i] || !std::isfinite(*all[i])) continue;
+    for (std::size_t r = 0; r < runs.size(); ++r) {
+      const std::optional<double> x = runs[r][i], rest = others[r][i];
+      varied[i] = varied[i] || (x && *x != *all[i]);
+      if (!x || !rest || !std::isfinite(*x) || !std::isfinite(*rest)) continue;
+      const double limit = limit_for(st, *rest, 0);
+      if (limit == 0) {  // no share of 0 reaches a value beyond it: the limit starts from it
+        if (st.is_max ? *x <= 0 : *x >= 0) continue;
+        s.margin_notes.push_back(fmt::format(
+            "{}: {} in {}, where the other runs set 0, which no margin widens: the limit "
+            "starts from {}",
+            st.name, *x, s.runs[r], *x));
+      } else if (const double w = 100 * std::abs(*x - limit) / std::abs(limit); w > widest) {
+        widest = w;
+        s.margin_why =
+            fmt::format("the farthest a held-back run fell from the others' limit ({} in {})",
+                        st.name, s.runs[r]);
+      }
+    }
+    if (!varied[i]) steady.push_back(st.name);
+  }
+  s.margin_percent = round_outward(widest, true);
+  if (widest == 0) s.margin_why = "no held-back run fell off the limits of the others";
+  if (widest > 0 && !steady.empty())
+    s.margin_notes.push_back(
+        fmt::format("none on {}: the same in every run", fmt::join(steady, ", ")));
+  std::vector<double> out(stats.size());
+  for (std::size_t i = 0; i < stats.size(); ++i) out[i] = varied[i] ? widest : 0;
+  return out;
+}
+
+// Sets `s.proposed` from the runs' extremes, each widened by its margin; `s.reason` when a
+// limit cannot be met.
+void propose(const std::vector<Stat>& stats, const std::vector<Extremes>& runs,
+             const SuggestOptions& o, Suggestion& s) {
+  std::vector<double> margin(stats.size(), o.margin_percent.value_or(0));
+  if (o.margin_percent) {
+    s.margin_percent = *o.margin_percent, s.margin_why = "--margin";
+  } else {
+    margin = held_back_margins(stats, runs, s);
+  }
+  const Extremes seen = merged(stats, runs);
+  const auto limit = [&](std::size_t i) {
+    return limit_for(stats[i], seen[i].value_or(0), margin[i]);
+  };
   s.proposed = s.current;
-  s.proposed.resemble = s.current.resemble && seen.resemble;
-  s.proposed.max_mismatch_percent = std::min(100.0, round_outward(seen.mismatch * up, true));
-  s.proposed.max_channel_delta = std::min(255, int(std::ceil(seen.delta * up)));
-  // The means as the other limits: the largest any run measured, with the margin.
-  s.proposed.max_mean_shift = round_outward(seen.mean_shift * up, true);
-  s.proposed.max_mean_delta = round_outward(seen.mean_delta * up, true);
-  // A two-sided budget keeps its sides: the least seen (less the margin) at its lower end.
-  if (s.current.min_channel_delta > 0)
-    s.proposed.min_channel_delta = int(std::floor(seen.least_delta / up));
-  if (s.current.max_differing_pixels >= 0)
-    s.proposed.max_differing_pixels = (long long)std::ceil(double(seen.pixels) * up);
-  if (s.current.min_differing_pixels > 0)
-    s.proposed.min_differing_pixels = (long long)std::floor(double(seen.least_pixels) / up);
-  std::size_t i = 0;
-  for_each_limit(
-      s.proposed, [&](std::string_view region, const metric::Gates& g, metric::Limit& l) {
-        const std::optional<double>& extreme = seen.limits[i++];
-        const std::string name =
-            fmt::format("{}{} {}_{}", region.empty() ? "" : std::string(region) + ": ",
-                        g.metric->name, l.is_max ? "max" : "min", l.stat);
-        if (!extreme) {
-          s.kept.push_back(name + ": no run measured it (identical images); kept");
-        } else if (std::isinf(*extreme) && !l.is_max) {
-          s.kept.push_back(name +
-                           ": +inf in every run (identical pixels), which any limit passes; kept");
-        } else if (std::isinf(*extreme)) {
-          s.reason = name + ": +inf in a run (identical pixels), which no max_ limit passes";
-        } else {
-          const double headroom = std::abs(*extreme) * o.margin_percent / 100;
-          l.limit = round_outward(l.is_max ? *extreme + headroom : *extreme - headroom, l.is_max);
-        }
-      });
+  s.proposed.resemble = s.current.resemble && seen[kMismatch];
+  s.proposed.max_mismatch_percent = std::min(100.0, limit(kMismatch));
+  s.proposed.max_channel_delta = int(std::min(255.0, limit(kDelta)));
+  s.proposed.max_mean_shift = limit(kMeanShift);
+  s.proposed.max_mean_delta = limit(kMeanDelta);
+  // A two-sided budget keeps its sides: the least seen, less the margin, at its lower end.
+  if (stats[kLeastDelta].used) s.proposed.min_channel_delta = int(limit(kLeastDelta));
+  if (stats[kPixels].used) s.proposed.max_differing_pixels = (long long)limit(kPixels);
+  if (stats[kLeastPixels].used) s.proposed.min_differing_pixels = (long long)limit(kLeastPixels);
+  std::size_t i = kGates;
+  for_each_limit(s.proposed, [&](std::string_view, const metric::Gates&, metric::Limit& l) {
+    const std::string& name = stats[i].name;
+    if (!seen[i]) {
+      s.kept.push_back(name + ": no run measured it (identical images); kept");
+    } else if (std::isinf(*seen[i]) && !l.is_max) {
+      s.kept.push_back(name +
+                       ": +inf in every run (identical pixels), which any limit passes; kept");
+    } else if (std::isinf(*seen[i])) {
+      s.reason = name + ": +inf in a run (identical pixels), which no max_ limit passes";
+    } else {
+      l.limit = limit(i);
+    }
+    ++i;
+  });
 }
 
 Suggestion suggest_case(const Suite& suite, const Case& c, const std::vector<Run>& runs,
                         const SuggestOptions& o) {
   Suggestion s;
   s.id = c.id, s.current = c.tolerance;
-  Observed seen;
-  for_each_limit(c.tolerance, [&](auto, auto&, auto&) { seen.limits.emplace_back(); });
+  const std::vector<Stat> stats = stats_of(c.tolerance);
+  std::vector<Extremes> seen;  // per run
   for (const Run& run : runs) {
     const auto r = std::ranges::find(run.results.cases, c.id, &CaseResult::id);
     if (r == run.results.cases.end()) continue;
     s.runs.push_back(run.name());
-    if (s.reason.empty()) s.reason = observe(suite, c, run, *r, seen);
+    seen.emplace_back(stats.size());
+    if (s.reason.empty()) s.reason = observe(suite, c, run, *r, stats, seen.back());
   }
   if (s.runs.size() < 2) {
     s.reason = s.runs.empty()
                    ? "in no report"
                    : "seen in one run (" + s.runs.front() + "); a suggestion needs two or more";
   }
-  if (s.reason.empty()) propose(seen, o, s);
+  if (s.reason.empty()) propose(stats, seen, o, s);
   return s;
 }
 

@@ -1,6 +1,7 @@
 // `aosuite tolerances suggest`: from several runs of a suite (the reports `check` wrote, on
-// other machines or retries), the tightest tolerance per case that passes every one of them, as
-// Skia Gold's inexact-matching parameter search proposes one. A proposal to review: the suite
+// other machines or retries), a tolerance per case that passes every one of them, widened by a
+// margin that a run held back from the others needed, so that the next run passes too (as
+// Skia Gold's inexact-matching parameter search proposes one). A proposal to review: the suite
 // and its goldens are never touched.
 #pragma once
 
@@ -15,9 +16,10 @@
 namespace aosuite::harness {
 
 struct SuggestOptions {
-  // Relative headroom: each max limit is the largest value times (1 + margin / 100), each min
-  // limit the smallest less as much, before rounding outward.
-  double margin_percent = 0;
+  // Relative headroom: each max limit is the largest value plus margin % of it, each min limit
+  // the smallest less as much, before rounding outward. None: each case's margin is chosen
+  // from its runs so that a run held back from the others passes (`Suggestion::margin_why`).
+  std::optional<double> margin_percent;
 };
 
 struct Suggestion {
@@ -30,6 +32,12 @@ struct Suggestion {
   Tolerance proposed;
   // Limits left as the suite has them, and why ("flip max_mean: no run measured it ...").
   std::vector<std::string> kept;
+  // The margin the limits got, in % of each measured value (rounded up to 4 significant digits
+  // for show), and why: "--margin", or "the widest a held-back run needed (max_mismatch_percent
+  // in reports/c)"; then the limits that got none or start elsewhere, and why.
+  double margin_percent = 0;
+  std::string margin_why;
+  std::vector<std::string> margin_notes;
 };
 
 // One suggestion per case of the suite, in its order. A suggestion needs two runs or more, each

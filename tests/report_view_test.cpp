@@ -2,7 +2,11 @@
 // images as pictures, through PNG previews beside them in the report folder, made again when
 // the EXR changes; a metric-gated row in its gate's own units; and every failure on one page,
 // golden | new | diff side by side, whose boxes feed the approve bar's bless command; what a
-// tolerance ignores drawn over the diff.
+// tolerance ignores drawn over the diff. And the review loop on a laptop (1280x800) and a
+// desktop (1920x1080): the table beside an open case stays readable, the panel's width is
+// dragged and remembered, and an image's views zoom to its largest difference, pan together
+// and flicker.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -69,8 +73,77 @@ class ReportView : public ::testing::Test {
     EXPECT_EQ(r.rc, 0) << r.err;
     return r.out;
   }
+  // Folder mode: `count` more failing cases of long ids, 400x300 pictures of a gradient of which
+  // one pixel, (300, 200), turned red: gone__frame_with_a_long_name/sub/dir/image_number_042.png
+  // (id gone__frame_with_a_long_name__sub__dir__image_number_042.png) and on.
+  void long_named_cases(int count) {
+    cv::Mat golden(300, 400, CV_8UC4);
+    for (int y = 0; y < golden.rows; ++y)
+      for (int x = 0; x < golden.cols; ++x)
+        golden.at<cv::Vec4b>(y, x) = cv::Vec4b(static_cast<unsigned char>(x * 255 / 400),
+                                               static_cast<unsigned char>(y * 255 / 300), 128, 255);
+    cv::Mat fresh = golden.clone();
+    fresh.at<cv::Vec4b>(200, 300) = cv::Vec4b(255, 0, 0, 255);
+    for (int n = 42; n < 42 + count; ++n) {
+      const std::string name =
+          fmt::format("gone__frame_with_a_long_name/sub/dir/image_number_{:03}.png", n);
+      for (const auto& [side, image] :
+           {std::pair{"expected", golden}, std::pair{"actual", fresh}}) {
+        fs::create_directories((dir_ / side / name).parent_path());
+        write_png_rgba8(dir_ / side / name, image);
+      }
+    }
+    const test::Outcome r =
+        test::run_shell("cd " + dir_.path().string() + " && " + AOSUITE_BIN +
+                            " check --actual actual --expected expected --report rep",
+                        dir_.path());
+    ASSERT_EQ(r.rc, 1) << r.out << r.err;
+  }
+  // Runs `script`, the body of an async function, in a page that shows the report at `hash` in
+  // a frame of width x height (the report's window), once it has loaded: f is the frame, w its
+  // window, d its document; key(k) presses a key in it, wait(ms) waits (virtual time). Returns
+  // what the script returns, {"error": ...} if it threw. The page is in the report's folder
+  // (the frame's document is then its own; --allow-file-access-from-files) and Chromium's
+  // profile is fresh for each run (localStorage empty).
+  nlohmann::json probe(const std::string& hash, int width, int height, const std::string& script) {
+    std::ofstream(dir_ / "rep" / "probe.html")
+        << "<!doctype html><body style=margin:0><iframe id=f style=\"border:0;width:" << width
+        << "px;height:" << height << "px\" src=\"index.html" << hash
+        << "\"></iframe><pre id=out></pre>"
+        << R"(<script>
+const f = document.getElementById("f"), wait = (ms) => new Promise((done) => setTimeout(done, ms));
+const key = (k) => f.contentDocument.dispatchEvent(new KeyboardEvent("keydown", { key: k, bubbles: true }));
+f.addEventListener("load", async () => {
+  const w = f.contentWindow, d = f.contentDocument;
+  let out;
+  try { out = await (async () => {)"
+        << script << R"(})(); } catch (e) { out = { error: String(e) }; }
+  document.getElementById("out").textContent = JSON.stringify(out);
+}, { once: true });
+</script>)";
+    fs::remove_all(dir_ / "profile");
+    const test::Outcome r = test::run_shell(
+        fmt::format("chromium --headless --no-sandbox --disable-gpu --allow-file-access-from-files "
+                    "--user-data-dir={} --window-size={},{} --virtual-time-budget=10000 "
+                    "--dump-dom 'file://{}'",
+                    (dir_ / "profile").string(), width, height + 100,
+                    (dir_ / "rep" / "probe.html").string()),
+        dir_.path());
+    EXPECT_EQ(r.rc, 0) << r.err;
+    const std::string tag = "<pre id=\"out\">";
+    const std::size_t at = r.out.find(tag);
+    if (at == std::string::npos) return {{"error", "no output: " + r.out}};
+    std::string out = r.out.substr(at + tag.size(), r.out.find("</pre>", at) - at - tag.size());
+    for (const auto& [entity, ch] :
+         {std::pair{"&lt;", "<"}, std::pair{"&gt;", ">"}, std::pair{"&amp;", "&"}})
+      for (std::size_t p; (p = out.find(entity)) != std::string::npos;)
+        out.replace(p, std::string(entity).size(), ch);
+    return nlohmann::json::parse(out);
+  }
   test::TempDir dir_;
 };
+
+const char* const kLongId = "gone__frame_with_a_long_name__sub__dir__image_number_042.png";
 
 // A row's thumbnail for an image no browser may show as it is (WebP here; JPEG, TIFF alike):
 // a PNG made from its pixels, not an empty cell.
@@ -306,6 +379,183 @@ TEST_F(ReportView, IgnoredPixelsAreDrawnOverTheDiff) {
       << panel;
   EXPECT_EQ(panel.find("<figure class=\"missing\">"), std::string::npos)
       << "a picture did not load";
+}
+
+// With a case open beside it, at 1280x800 (the panel half the window, the table's measured,
+// limit and time giving way) and at 1920x1080 (every column), each drawn row of the table keeps
+// a fixed height, its case's name a readable width broken only after a separator, never inside
+// a word, and its thumbnail whole, left of the panel.
+TEST_F(ReportView, AnOpenCaseLeavesTheTableReadable) {
+  long_named_cases(30);
+  for (const auto& [width, height] : {std::pair{1280, 800}, std::pair{1920, 1080}}) {
+    SCOPED_TRACE(width);
+    const nlohmann::json seen = probe(std::string("#case=") + kLongId, width, height, R"(
+      const panel = d.getElementById("detail").getBoundingClientRect();
+      return { panel: panel.left, width: panel.width, rows: Array.from(d.querySelectorAll("#cases tbody tr"), (tr) => {
+        // The text before each line break of the name: where a character starts a line below.
+        const name = tr.querySelector("td.id a"), range = d.createRange(), tops = [], breaks = [];
+        for (const node of name.childNodes) {
+          for (let i = 0; node.nodeType === Node.TEXT_NODE && i < node.length; ++i) {
+            range.setStart(node, i);
+            range.setEnd(node, i + 1);
+            tops.push(range.getBoundingClientRect().top);
+          }
+        }
+        for (let i = 1; i < tops.length; ++i) if (tops[i] > tops[i - 1]) breaks.push(name.textContent.slice(0, i));
+        return { id: name.textContent, height: tr.getBoundingClientRect().height, name: tr.querySelector("td.id").getBoundingClientRect().width,
+          thumb: tr.querySelector("td.thumb").getBoundingClientRect().right, breaks };
+      }) };)");
+    ASSERT_FALSE(seen.contains("error")) << seen;
+    EXPECT_NEAR(seen.at("width").get<double>(), width / 2, 10);  // half, less the scroll bar's
+    ASSERT_EQ(seen.at("rows").size(), 32u);                      // and chart.png, ao.exr
+    bool long_seen = false;
+    for (const nlohmann::json& row : seen.at("rows")) {
+      const std::string id = row.at("id");
+      SCOPED_TRACE(id);
+      EXPECT_LE(row.at("height").get<double>(), 130);
+      EXPECT_GE(row.at("name").get<double>(), 200);
+      EXPECT_LE(row.at("thumb").get<double>(), seen.at("panel").get<double>());
+      for (const std::string before : row.at("breaks")) {
+        const std::string separators = "/_-.";
+        EXPECT_NE(separators.find(before.back()), std::string::npos) << "a break after " << before;
+        EXPECT_EQ(separators.find(id[before.size()]), std::string::npos)
+            << "a break after " << before;
+      }
+      long_seen |= id == kLongId && !row.at("breaks").empty();
+    }
+    EXPECT_TRUE(long_seen) << "the long name is on more than one line";
+  }
+}
+
+// The panel's left edge drags (to 900 px), moves by 40 px with ← when focused; the width is
+// remembered when the page is opened again, and the table keeps 600 px however far the edge is
+// dragged.
+TEST_F(ReportView, ThePanelsWidthIsDraggedAndRemembered) {
+  long_named_cases(3);
+  const nlohmann::json seen = probe(std::string("#case=") + kLongId, 1280, 800, R"(
+    const width = () => f.contentDocument.getElementById("detail").getBoundingClientRect().width;
+    const dragTo = (x) => {
+      const w = f.contentWindow, grip = w.document.getElementById("grip"), at = grip.getBoundingClientRect();
+      const send = (type, x, to) => to.dispatchEvent(new w.PointerEvent(type, { clientX: x, clientY: 300, bubbles: true }));
+      send("pointerdown", at.left + at.width / 2, grip);
+      send("pointermove", x, w);
+      send("pointerup", x, w);
+    };
+    dragTo(900);
+    const dragged = width();
+    d.getElementById("grip").dispatchEvent(new KeyboardEvent("keydown", { key: "ArrowLeft", bubbles: true }));
+    const keyed = width();
+    w.location.reload();
+    await new Promise((done) => f.addEventListener("load", done, { once: true }));
+    const reopened = width();
+    dragTo(0);
+    const table = f.contentDocument.querySelector("main").getBoundingClientRect();
+    return { room: f.contentDocument.getElementById("detail").getBoundingClientRect().right, dragged, keyed, reopened, widest: width(), table: table.width, right: table.right,
+      panel: f.contentDocument.getElementById("detail").getBoundingClientRect().left };)");
+  ASSERT_FALSE(seen.contains("error")) << seen;
+  const int room = seen.at("room");  // the window less its scroll bar
+  EXPECT_EQ(seen.at("dragged"), room - 900);
+  EXPECT_EQ(seen.at("keyed"), room - 900 + 40);
+  EXPECT_EQ(seen.at("reopened"), room - 900 + 40);
+  EXPECT_EQ(seen.at("widest"), room - 600);
+  EXPECT_EQ(seen.at("table"), 600);
+  EXPECT_LE(seen.at("right").get<double>(), seen.at("panel").get<double>());
+}
+
+// m zooms to 8x and centres every view of the image (golden, new, diff, |new - golden|, new -
+// golden, swap, slider) on its largest difference, (300, 200), marked; a view panned by
+// dragging takes the others along (Chromium draws no frame in this test, so the page's scroll
+// events are sent by hand); b flickers golden and new every 500 ms until b again.
+TEST_F(ReportView, TheLargestDifferenceIsShownInEveryViewWhichPanTogether) {
+  long_named_cases(1);
+  const nlohmann::json seen = probe(std::string("#case=") + kLongId, 1280, 800, R"(
+    const views = Array.from(d.querySelectorAll("#detail .images .view"));
+    const scrolls = () => views.map((v) => [v.scrollLeft, v.scrollTop]);
+    key("m");
+    await wait(100);
+    const jumped = views.map((v) => {
+      const img = v.querySelector("img"), box = v.getBoundingClientRect(), at = img.getBoundingClientRect();
+      const scale = at.width / img.naturalWidth, x = at.left + 300.5 * scale, y = at.top + 200.5 * scale;
+      return { scale, marked: !!v.querySelector(".mark"),
+        centred: Math.abs(x - (box.left + v.clientLeft + v.clientWidth / 2)) <= scale && Math.abs(y - (box.top + v.clientTop + v.clientHeight / 2)) <= scale };
+    });
+    const atJump = scrolls();
+    const send = (type, x, to) => to.dispatchEvent(new w.PointerEvent(type, { clientX: x, clientY: 100, bubbles: true }));
+    send("pointerdown", 700, views[1].querySelector("img"));
+    send("pointermove", 760, w);
+    send("pointerup", 760, w);
+    views[1].dispatchEvent(new Event("scroll"));
+    const panned = scrolls();
+    const swap = d.querySelector(".swap img.new"), shown = () => getComputedStyle(swap).display === "block";
+    const flicker = [];
+    key("b");
+    for (let i = 0; i < 4; ++i, await wait(500)) flicker.push(shown());
+    key("b");
+    await wait(1000);
+    flicker.push(shown());
+    return { jumped, atJump, panned, flicker,
+      keys: d.querySelector(".keys").textContent, buttons: d.querySelector("#detail .zoom").textContent };)");
+  ASSERT_FALSE(seen.contains("error")) << seen;
+  ASSERT_EQ(seen.at("jumped").size(), 7u) << seen;
+  for (const nlohmann::json& view : seen.at("jumped")) {
+    EXPECT_EQ(view.at("scale"), 8) << seen;
+    EXPECT_TRUE(view.at("centred")) << seen;
+    EXPECT_TRUE(view.at("marked")) << seen;
+  }
+  const nlohmann::json at_jump = seen.at("atJump"), panned = seen.at("panned");
+  EXPECT_GT(at_jump.at(0).at(0).get<double>(), 2000);  // 300 px at 8x, less half a view
+  for (std::size_t k = 1; k < 7; ++k) {
+    EXPECT_EQ(at_jump.at(k), at_jump.at(0));
+    EXPECT_EQ(panned.at(k), panned.at(0));
+  }
+  EXPECT_EQ(panned.at(0).at(0).get<double>(), at_jump.at(0).at(0).get<double>() - 60);
+  EXPECT_EQ(seen.at("flicker"), nlohmann::json({false, true, false, true, false}));
+  EXPECT_NE(seen.at("keys").get<std::string>().find("m largest difference, b flicker"),
+            std::string::npos);
+  EXPECT_NE(seen.at("buttons").get<std::string>().find("largest difference (m)"),
+            std::string::npos);
+  EXPECT_NE(seen.at("buttons").get<std::string>().find("flicker (b)"), std::string::npos);
+}
+
+// A retried case that failed, then passed, shows its failing attempt's pictures beside the
+// passing ones; under --report-images failures a passing case says its images were left out and
+// names its golden.
+TEST_F(ReportView, AFlakyCaseShowsItsFailingAttemptAndAPassNamesItsGolden) {
+  fs::create_directories(dir_ / "s");
+  cv::Mat red(6, 8, CV_8UC4, cv::Scalar(255, 0, 0, 255));
+  write_png_rgba8(dir_ / "s" / "red.png", red);
+  red.rowRange(0, 3).setTo(cv::Scalar(0, 255, 0, 255));
+  write_png_rgba8(dir_ / "s" / "green.png", red);
+  // Green on its first run, red after: FLAKY once the red golden is blessed.
+  std::ofstream(dir_ / "s" / "t.toml") << R"([[case]]
+name = "wobbly"
+command = ["sh", "-c", "if [ -e {suite_dir}/odd ]; then rm {suite_dir}/odd; cp {suite_dir}/red.png {out}/w.png; else touch {suite_dir}/odd; cp {suite_dir}/green.png {out}/w.png; fi"]
+outputs = ["w.png"]
+)";
+  std::ofstream(dir_ / "s" / "odd") << "";
+  const std::string bin = std::string(AOSUITE_BIN) + " ";
+  const std::string in = "cd " + dir_.path().string() + " && ";
+  ASSERT_EQ(test::run_shell(in + bin + "bless s/t.toml", dir_.path()).rc, 0);
+  test::Outcome r = test::run_shell(
+      in + bin + "check s/t.toml --retries 1 --report rep --report-images failures", dir_.path());
+  ASSERT_EQ(r.rc, 0) << r.out << r.err;
+  std::string panel = dom("#case=wobbly");
+  EXPECT_NE(panel.find("Attempt 1: <span class=\"FAIL\">FAIL</span>"), std::string::npos) << panel;
+  for (const char* file : {"attempt1_w.png", "attempt1_golden_w.png", "attempt1_diff_w.png"})
+    EXPECT_NE(panel.find(std::string("<img src=\"cases/wobbly/") + file + "\""), std::string::npos)
+        << file;
+  EXPECT_EQ(panel.find("<figure class=\"missing\">"), std::string::npos)
+      << "a picture did not load";
+
+  // It passes at once now: its images are left out and the page names its golden.
+  std::ofstream(dir_ / "s" / "odd") << "";  // red this time
+  r = test::run_shell(in + bin + "check s/t.toml --report rep --report-images failures",
+                      dir_.path());
+  ASSERT_EQ(r.rc, 0) << r.out << r.err;
+  panel = dom("#case=wobbly");
+  EXPECT_NE(panel.find("Its images were not kept"), std::string::npos) << panel;
+  EXPECT_NE(panel.find("s/goldens/t/wobbly/w.png</code>"), std::string::npos) << panel;
+  EXPECT_EQ(panel.find("Attempt 1"), std::string::npos);
 }
 
 }  // namespace

@@ -1,12 +1,16 @@
 // `aosuite tolerances suggest`, end to end: two check runs whose images differ slightly from
 // the golden and from each other, the suggestion's exact numbers, and that those limits pass
-// both runs' images while tighter ones fail; bad input is one line, exit 2, nothing written.
+// both runs' images while tighter ones fail; the margin a held-back run needs, measured on ten
+// noisy runs with the suggestion pasted into the suite; bad input is one line, exit 2, nothing
+// written.
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <random>
 
 #include "compare/opencv.hpp"
 #include "harness/tolerance_suggest.hpp"
@@ -81,7 +85,8 @@ files = ["photo.png"]
     ADD_FAILURE() << "no chart in " << report;
     return 0;
   }
-  fs::path suggested() const { return dir_ / "s" / "goldens" / "t" / "tolerances.suggested.toml"; }
+  // Written into the last report given, never among the goldens.
+  fs::path suggested() const { return dir_ / "reports" / "b" / "tolerances.suggested.toml"; }
   test::TempDir dir_;
 };
 
@@ -97,18 +102,20 @@ TEST(RoundOutward, FourSignificantDigitsNeverInsideTheValue) {
   }
 }
 
-// The suggestion is the largest of what both runs measured, in the suite's keys; put into the
-// suite it passes both runs' images, and one step tighter it fails the run that set it.
+// With --margin 0 the suggestion is the largest of what both runs measured, in the suite's
+// keys; put into the suite it passes both runs' images, and one step tighter it fails the run
+// that set it.
 TEST_F(TolerancesSuggest, TheTightestLimitsPassingEveryRun) {
   two_runs();
   const test::Outcome r =
-      aosuite("tolerances suggest s/t.toml --report reports/a --report reports/b");
+      aosuite("tolerances suggest s/t.toml --report reports/a --report reports/b --margin 0");
   EXPECT_EQ(r.rc, 1) << r.out << r.err;  // photo was seen in one run only
   const double flip = harness::round_outward(std::max(flip_mean("a"), flip_mean("b")), true);
   ASSERT_GT(flip, 0);
   const std::string toml = test::read_text(suggested());
   for (const std::string& line :
-       {std::string("[\"chart\"]  # from 2 runs\n"), std::string("mode = \"nothing\"\n"),
+       {std::string("# chart, from 2 runs: +0 % on each limit, --margin\n[case.tolerance]\n"),
+        std::string("mode = \"nothing\"\n"),
         std::string("max_mismatch_percent = 4.167  # now 50\n"),  // 2 of 48 pixels
         std::string("max_channel_delta = 7  # now 64\n"),
         fmt::format("flip = {{ max_mean = {} }}  # now {{ max_mean = 0.5 }}\n", flip),
@@ -152,8 +159,107 @@ TEST_F(TolerancesSuggest, AMarginIsAddedToWhatWasMeasured) {
   const std::string toml = test::read_text(dir_ / "margin.toml");
   EXPECT_NE(toml.find("max_mismatch_percent = 4.584  # now 50\n"), std::string::npos) << toml;
   EXPECT_NE(toml.find("max_channel_delta = 8  # now 64\n"), std::string::npos) << toml;
-  EXPECT_NE(toml.find("with a margin of 10 %"), std::string::npos) << toml;
+  EXPECT_NE(toml.find("The margin is 10 % (--margin)."), std::string::npos) << toml;
   EXPECT_FALSE(fs::exists(suggested()));
+}
+
+// Without --margin each run is held back in turn: run b, against the limits run a alone sets,
+// needs them about doubled (2 pixels against 1, steps of 7 against 5). That widest widening is
+// the margin of every limit that varied, stated in the file and the summary; the file goes
+// into the last report folder, not among the goldens.
+TEST_F(TolerancesSuggest, TheDefaultMarginIsWhatAHeldBackRunNeeded) {
+  two_runs();
+  const test::Outcome r =
+      aosuite("tolerances suggest s/t.toml --report reports/a --report reports/b");
+  EXPECT_EQ(r.rc, 1) << r.out << r.err;
+  const std::string toml = test::read_text(suggested());
+  const std::string head = "# chart, from 2 runs: ";
+  const std::size_t at = toml.find(head);
+  ASSERT_NE(at, std::string::npos) << toml;
+  const std::string margin = toml.substr(at + head.size(), toml.find('\n', at) - at - head.size());
+  EXPECT_TRUE(margin.starts_with("+")) << margin;
+  EXPECT_NE(margin.find(" % on each limit, the farthest a held-back run fell from the others' "
+                        "limit ("),
+            std::string::npos)
+      << margin;
+  EXPECT_TRUE(margin.ends_with(" in reports/b)")) << margin;
+  // Run b's 4.167 % against run a's 2.084 % (rounded up) alone needs +99.94 %.
+  const double percent = std::stod(margin.substr(1));
+  EXPECT_GE(percent, 99.93) << margin;
+  EXPECT_NE(toml.find(fmt::format("[case.tolerance]\nmode = \"nothing\"\n"), at),
+            std::string::npos);
+  EXPECT_NE(toml.find(fmt::format("max_channel_delta = {}  # now 64\n",
+                                  int(std::ceil(7 * (1 + percent / 100))))),
+            std::string::npos)
+      << toml;
+  EXPECT_NE(r.out.find(margin), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(dir_ / "s" / "goldens" / "t" / "tolerances.suggested.toml"));
+}
+
+// A noisy renderer: each run brightens a random eighth of the pixels by 1 to 12 levels (a
+// triangular distribution), from a fixed seed of its own. Suggested from the first four of ten
+// runs and pasted into a copy of the suite as it is, the default margin passes the six later
+// runs, while the limits without a margin fail at least one: the margin is what makes them hold.
+TEST_F(TolerancesSuggest, LaterRunsPassUnderThePastedSuggestion) {
+  constexpr int kRuns = 10, kFirst = 4;
+  write_suite(  // loose enough for every run: the noise shifts the mean by some 0.8 levels
+      "mode = \"nothing\"\nmax_mismatch_percent = 50\nmax_channel_delta = 64\n"
+      "max_mean_shift = 8\nmax_mean_delta = 8\nflip = { max_mean = 0.5 }\n");
+  const cv::Mat clean(48, 64, CV_8UC4, cv::Scalar(100, 100, 100, 255));
+  write_png_rgba8(dir_ / "s" / "golden.png", clean);
+  for (int run = 0; run < kRuns; ++run) {
+    std::mt19937 rng(43 + run);  // its sequence is the standard's; distributions' are not
+    cv::Mat m = clean.clone();
+    for (cv::Vec4b& p : cv::Mat_<cv::Vec4b>(m)) {
+      if (rng() % 8 != 0) continue;
+      const auto step = 1 + rng() % 6;  // one draw a statement: their order is fixed
+      p[0] = static_cast<unsigned char>(p[0] + step + rng() % 7);
+    }
+    write_png_rgba8(dir_ / "s" / fmt::format("r{}.png", run), m);
+  }
+  draw("golden");
+  ASSERT_EQ(aosuite("bless s/t.toml --filter '^chart$'").rc, 0);
+  for (int run = 0; run < kRuns; ++run) {
+    draw(fmt::format("r{}", run));
+    const test::Outcome r =
+        aosuite(fmt::format("check s/t.toml --filter '^chart$' --report reports/r{}", run));
+    ASSERT_EQ(r.rc, 0) << r.out << r.err;
+  }
+  const auto suggest_from_first = [&](const std::string& flags) {
+    std::string args = "tolerances suggest s/t.toml" + flags;
+    for (int run = 0; run < kFirst; ++run) args += fmt::format(" --report reports/r{}", run);
+    const test::Outcome r = aosuite(args);
+    EXPECT_EQ(r.rc, 1) << r.out << r.err;  // the photo is in no report
+    return test::read_text(dir_ / "reports" / fmt::format("r{}", kFirst - 1) /
+                           "tolerances.suggested.toml");
+  };
+  // The chart's table pasted below its [[case]] in a copy of the suite; each later run's status
+  // under it.
+  const auto later_runs = [&](const std::string& toml, const std::string& tag) {
+    std::string suite = test::read_text(dir_ / "s" / "t.toml");
+    const std::size_t table = toml.find("[case.tolerance]\n");
+    const std::size_t end = toml.find("\n\n", table);
+    suite.insert(suite.find("\n[[case]]\nname = \"photo\""),
+                 fmt::format("\n{}", std::string_view(toml).substr(table, end - table)));
+    std::ofstream(dir_ / "s" / "pasted.toml") << suite;
+    std::vector<int> rcs;
+    for (int run = kFirst; run < kRuns; ++run) {
+      draw(fmt::format("r{}", run));
+      rcs.push_back(aosuite(fmt::format("check s/pasted.toml --goldens s/goldens/t --filter "
+                                        "'^chart$' --report reports/{}{}",
+                                        tag, run))
+                        .rc);
+    }
+    return rcs;
+  };
+  const std::string with_margin = suggest_from_first("");
+  EXPECT_EQ(later_runs(with_margin, "held"), std::vector<int>(kRuns - kFirst, 0)) << with_margin;
+  // The largest step is 12 in every run: it varies not, and gets no margin.
+  EXPECT_NE(with_margin.find("#   none on max_channel_delta: the same in every run\n"),
+            std::string::npos)
+      << with_margin;
+  const std::string without = suggest_from_first(" --margin 0");
+  EXPECT_NE(std::ranges::count(later_runs(without, "tight"), 1), 0) << without;
 }
 
 // A two-sided budget is suggested two-sided: the least and the most each run measured.
@@ -162,7 +268,9 @@ TEST_F(TolerancesSuggest, TwoSidedBudgetsKeepBothEnds) {
       "mode = \"nothing\"\nmax_mismatch_percent = 50\nchannel_delta = [1, 64]\n"
       "differing_pixels = [1, 40]\n");
   two_runs("^chart$");  // the photo is identical: under a minimum of 1 it would fail
-  ASSERT_NE(aosuite("tolerances suggest s/t.toml --report reports/a --report reports/b").rc, 2);
+  ASSERT_NE(
+      aosuite("tolerances suggest s/t.toml --report reports/a --report reports/b --margin 0").rc,
+      2);
   const std::string toml = test::read_text(suggested());
   EXPECT_NE(toml.find("channel_delta = [5, 7]  # now [1, 64]\n"), std::string::npos) << toml;
   EXPECT_NE(toml.find("differing_pixels = [1, 2]  # now [1, 40]\n"), std::string::npos) << toml;
@@ -181,7 +289,7 @@ TEST_F(TolerancesSuggest, AMarginLowersAMinimum) {
                 .rc,
             2);
   const std::string toml = test::read_text(dir_ / "m.toml");
-  EXPECT_NE(toml.find("channel_delta = [3, 11]  # now [1, 64]\n"), std::string::npos) << toml;
+  EXPECT_NE(toml.find("channel_delta = [2, 11]  # now [1, 64]\n"), std::string::npos) << toml;
   const auto ssim_mean = [&](const std::string& report) {
     const nlohmann::json r =
         nlohmann::json::parse(test::read_text(dir_ / "reports" / report / "results.json"));
@@ -213,6 +321,8 @@ TEST_F(TolerancesSuggest, BadInputIsOneLineAndWritesNothing) {
   draw("a");
   aosuite("check s/u.toml --report reports/u");  // NEW: suite u has no goldens
   ASSERT_TRUE(fs::exists(dir_ / "reports" / "u" / "results.json"));
+  draw("b");  // a report among the goldens: the file would be written there
+  ASSERT_EQ(aosuite("check s/t.toml --filter '^chart$' --report s/goldens/t/rep").rc, 0);
   const std::string a = "tolerances suggest s/t.toml --report reports/a ";
   const struct {
     std::string args, names;
@@ -220,6 +330,8 @@ TEST_F(TolerancesSuggest, BadInputIsOneLineAndWritesNothing) {
       {a + "--report reports/missing", "reports/missing/results.json"},
       {a + "--report reports/u", "reports/u/results.json: a run of suite 'u', not 't'"},
       {a + "--report reports/a", "reports/a/results.json: given twice"},
+      {a + "--report s/goldens/t/rep",
+       "s/goldens/t/rep/tolerances.suggested.toml: inside the goldens folder"},
       {a, "no case of s/t.toml has two usable runs"},
   };
   for (const auto& b : bad) {
@@ -229,6 +341,7 @@ TEST_F(TolerancesSuggest, BadInputIsOneLineAndWritesNothing) {
     EXPECT_NE(r.err.find(b.names), std::string::npos) << r.err;
     EXPECT_FALSE(fs::exists(suggested())) << b.args;
   }
+  EXPECT_FALSE(fs::exists(dir_ / "s" / "goldens" / "t" / "rep" / "tolerances.suggested.toml"));
 }
 
 // Folder mode judges every image by one tolerance, so its suggestion is the folder-mode flags
@@ -248,10 +361,21 @@ TEST_F(TolerancesSuggest, FolderModeRunsGetTheFlagsOfOneTolerance) {
   write_png_rgba8(dir_ / "actual" / "sub" / "two.png", chart({3, 7}));
   ASSERT_EQ(aosuite("check " + folders + loose + " --report reports/b").rc, 0);
 
-  const test::Outcome r = aosuite("tolerances suggest --report reports/a --report reports/b");
+  // Each image was changed in one run and the golden in the other, so each stat it has was 0 in
+  // one of two runs: no share of 0 reaches the other run's value, and the summary says so.
+  const test::Outcome held = aosuite("tolerances suggest --report reports/a --report reports/b");
+  ASSERT_EQ(held.rc, 0) << held.out << held.err;
+  EXPECT_NE(held.out.find("max_channel_delta: 5 in reports/a, where the other runs set 0, which "
+                          "no margin widens: the limit starts from 5"),
+            std::string::npos)
+      << held.out;
+  // Without a margin, Resemble's default mode lets steps this small through (0 %); the largest
+  // step is run b's 7, the means the larger of the two runs', and FLIP's mean the larger of the
+  // two images'.
+  const std::string tightest = " --margin 0";
+  const test::Outcome r =
+      aosuite("tolerances suggest --report reports/a --report reports/b" + tightest);
   ASSERT_EQ(r.rc, 0) << r.out << r.err;
-  // Resemble's default mode lets steps this small through (0 %); the largest step is run b's 7,
-  // the means the larger of the two runs', and FLIP's mean the larger of the two images'.
   const std::string flags =
       "--max-mismatch 0 --max-channel-delta 7 --limit max_mean_shift=0.2084 "
       "--limit max_mean_delta=0.05209 --gate flip.max_mean=0.0073";
@@ -262,10 +386,10 @@ TEST_F(TolerancesSuggest, FolderModeRunsGetTheFlagsOfOneTolerance) {
   EXPECT_FALSE(fs::exists(dir_ / "expected" / "tolerances.suggested.toml"));
   // The same from another directory: the runs named the folders relative to theirs.
   fs::create_directories(dir_ / "elsewhere");
-  const test::Outcome there =
-      test::run_shell("cd " + (dir_ / "elsewhere").string() + " && " + AOSUITE_BIN +
-                          " tolerances suggest --report ../reports/a --report ../reports/b",
-                      dir_.path());
+  const test::Outcome there = test::run_shell(
+      "cd " + (dir_ / "elsewhere").string() + " && " + AOSUITE_BIN +
+          " tolerances suggest --report ../reports/a --report ../reports/b" + tightest,
+      dir_.path());
   EXPECT_EQ(there.rc, 0) << there.out << there.err;
   EXPECT_NE(there.out.find(flags), std::string::npos) << there.out;
 

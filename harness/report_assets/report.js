@@ -1,7 +1,8 @@
 // The report's behaviour: filter by status and text, keyboard navigation, one case opened
-// beside the table (golden / new / diff, swap, slider, zoom, 1:1), every failure on one page,
-// and the bless command for the cases selected. Works from disk: no network, no external
-// scripts, no server.
+// beside the table in a panel of adjustable width (golden / new / diff, swap and flicker,
+// slider, zoom, 1:1, pan and zoom shared by an image's views, a jump to its largest
+// difference), every failure on one page, and the bless command for the cases selected. Works
+// from disk: no network, no external scripts, no server.
 (function () {
   "use strict";
   const $ = (id) => document.getElementById(id);
@@ -23,15 +24,20 @@
   let view = []; // indices into data that pass the filter, in the report's order
   let drawn = 0; // how many of `view` are in the table
   const CHUNK = 150;
+  // A row keeps a fixed height beside an open panel: the case's name breaks only after a
+  // separator (/ _ - .), never inside a word, and is cut after three lines; its source and
+  // message keep one line each; each is whole in its title. Measured, limit and time (class
+  // wide) give way when the table is narrow: the open case shows them.
+  const breakable = (s) => esc(s).replace(/[/_\-.]+/g, "$&<wbr>");
+  const line = (cls, s) => `<div class=${cls} title="${esc(s)}">${esc(s)}</div>`;
   function rowHtml(i) {
     const c = data[i];
     const thumb = c.thumb ? `<img class=thumb loading=lazy src="${esc(url(c.thumb))}" alt=""${exposed(c.thumb_stops != null, c.thumb_stops)}>` : "";
     return `<tr data-i=${i} data-s=${c.status}><td><input type=checkbox aria-label=select${c.status === "ERROR" ? " disabled" : ""}${selected.has(i) ? " checked" : ""}></td>` +
-      `<td><span class=${c.status}>${c.status}</span></td><td class=id><a href="#case=${esc(encodeURIComponent(c.id))}">${esc(c.id)}</a>` +
-      (c.source ? `<div class=src>${esc(c.source)}</div>` : "") +
-      (c.status !== "PASS" && c.message ? `<div class=msg>${esc(c.message)}</div>` : "") +
-      `</td><td class=num>${esc(c.measured)}</td><td class=num>${esc(c.limit)}</td><td class=num>${esc(c.margin)}</td>` +
-      `<td class=num>${esc(c.delta)}</td><td class=num>${c.seconds.toFixed(2)}</td><td>${thumb}</td></tr>`;
+      `<td><span class=${c.status}>${c.status}</span></td><td class=id><a href="#case=${esc(encodeURIComponent(c.id))}" title="${esc(c.id)}">${breakable(c.id)}</a>` +
+      (c.source ? line("src", c.source) : "") + (c.status !== "PASS" && c.message ? line("msg", c.message) : "") +
+      `</td><td class="num wide">${esc(c.measured)}</td><td class="num wide">${esc(c.limit)}</td><td class=num>${esc(c.margin)}</td>` +
+      `<td class=num>${esc(c.delta)}</td><td class="num wide">${c.seconds.toFixed(2)}</td><td class=thumb>${thumb}</td></tr>`;
   }
   function drawTo(count) {
     count = Math.min(count, view.length);
@@ -172,8 +178,11 @@
   // The style that puts a float picture (a preview: `file` is its float file) under the
   // exposure control.
   const exposed = (file, stops) => (file ? ` style="filter:url(#${exposureFilter(stops || 0)})"` : "");
+  // A view: a box of the picture's size at fit that scrolls its picture when zoomed; the views
+  // of one image pan together. Its only child holds the picture and what is drawn over it.
+  const viewHtml = (inner, cls) => `<div class=view><div${cls ? " class=" + cls : ""}>${inner}</div></div>`;
   const fig = (src, caption, file, stops) =>
-    !src && !file ? "" : `<figure>${src ? `<img src="${esc(url(src))}" alt="${esc(caption)}"${exposed(file, stops)}>` : ""}` +
+    !src && !file ? "" : `<figure>${src ? viewHtml(`<img src="${esc(url(src))}" alt="${esc(caption)}"${exposed(file, stops)}>`) : ""}` +
       `<figcaption>${esc(caption)}${file ? ` — <a href="${esc(file)}">${esc(file.split("/").pop())}</a>${src ? " (sRGB preview)" : ""}` : ""}</figcaption></figure>`;
   // The diff with what the tolerance set apart drawn over it: ignored pixels (boxes and mask)
   // outlined in blue, regions tinted in their colours.
@@ -182,13 +191,12 @@
     const layers = [[v.ignored, "ignored", "ignored pixels outlined in blue"], [v.regions, "regions", "regions tinted"]]
       .filter((l) => l[0]);
     if (!layers.length) return fig(v.diff, "diff");
-    return `<figure><div class=over><img src="${esc(url(v.diff))}" alt=diff>` +
-      layers.map(([src, cls, what]) => `<img class=${cls} src="${esc(url(src))}" alt="${what}">`).join("") +
-      `</div><figcaption>diff; ${layers.map((l) => l[2]).join(", ")}</figcaption></figure>`;
+    return `<figure>${viewHtml(`<img src="${esc(url(v.diff))}" alt=diff>` +
+      layers.map(([src, cls, what]) => `<img class=${cls} src="${esc(url(src))}" alt="${what}">`).join(""), "over")}<figcaption>diff; ${layers.map((l) => l[2]).join(", ")}</figcaption></figure>`;
   }
   // The FLIP map with its colour scale: magma from 0 (no perceived difference) to 1.
   const heatFig = (v) =>
-    !v.heat ? "" : `<figure><img src="${esc(url(v.heat))}" alt="FLIP error">` +
+    !v.heat ? "" : `<figure>${viewHtml(`<img src="${esc(url(v.heat))}" alt="FLIP error">`)}` +
       `<figcaption>FLIP error (magma) <span class=scale aria-label="colour scale 0 to 1">0 <i></i> 1</span></figcaption></figure>`;
   document.addEventListener("error", (e) => {
     const fail = e.target.closest && e.target.closest("figure");
@@ -210,13 +218,17 @@
       h += `<p><label class=exposure>exposure <input type=range min=-8 max=8 step=0.5 value=${exposure} aria-label=exposure> <output>${exposure}</output> stops</label>` +
         `${exposureSet ? "" : " <span class=note>(chosen from the images: their brightest 0.1 % just below white)</span>"}</p>`;
     }
-    h += `<div class=images>${fig(v.golden, "golden", v.golden_file, v.golden_stops)}${fig(v.new, "new", v.new_file, v.new_stops)}${diffFig(v)}` +
+    // Where the jump to the largest difference goes: `largest` is "12 @ (3, 4)".
+    const at = /@ \((\d+), (\d+)\)$/.exec(v.largest);
+    h += `<div class=images${at ? ` data-x=${at[1]} data-y=${at[2]}` : ""}>${fig(v.golden, "golden", v.golden_file, v.golden_stops)}${fig(v.new, "new", v.new_file, v.new_stops)}${diffFig(v)}` +
       `${fig(v.abs, "|new − golden|, scaled: white is the largest difference" + (v.largest ? ` (${v.largest})` : ""))}` +
       `${fig(v.signed, "new − golden: blue darker, white unchanged, red brighter, scaled to the largest")}` +
       `${heatFig(v)}${fig(v.regions, "region map")}`;
     if (!brief && v.golden && v.new && !v.identical) {
-      h += `<figure><div class=swap><img class=golden src="${esc(url(v.golden))}" alt=golden${exposed(v.golden_file, v.golden_stops)}><img class=new src="${esc(url(v.new))}" alt=new${exposed(v.new_file, v.new_stops)}></div><figcaption>golden; hover for new</figcaption></figure>`;
-      h += `<figure><div class=slider><img src="${esc(url(v.golden))}" alt=golden${exposed(v.golden_file, v.golden_stops)}><img class=top src="${esc(url(v.new))}" alt=new${exposed(v.new_file, v.new_stops)}><input type=range min=0 max=100 value=50 aria-label="new vs golden"></div><figcaption>slider: new (left) over golden</figcaption></figure>`;
+      h += `<figure class=swap>${viewHtml(`<img class=golden src="${esc(url(v.golden))}" alt=golden${exposed(v.golden_file, v.golden_stops)}><img class=new src="${esc(url(v.new))}" alt=new${exposed(v.new_file, v.new_stops)}>`)}` +
+        "<figcaption><b class=golden>golden</b><b class=new>new</b>: hover for the other, b flickers</figcaption></figure>";
+      h += `<figure class=slider>${viewHtml(`<img src="${esc(url(v.golden))}" alt=golden${exposed(v.golden_file, v.golden_stops)}><img class=top src="${esc(url(v.new))}" alt=new${exposed(v.new_file, v.new_stops)}>`)}` +
+        `<input type=range min=0 max=100 value=50 aria-label="new vs golden"><figcaption>slider: new (left) over golden</figcaption></figure>`;
     }
     return h + "</div>";
   }
@@ -236,24 +248,38 @@
     }
     const c = data[i];
     if (!exposureSet) setExposure(autoExposure(c.images));
-    let h = `<button class=close title="close (Esc)">×</button><h2 id="${esc(c.id)}">${esc(c.id)} <span class="${c.status}">${c.status}</span></h2>`;
+    let h = `<button class=close title="close (Esc)">×</button><h2 id="${esc(c.id)}">${breakable(c.id)} <span class="${c.status}">${c.status}</span></h2>`;
     if (c.message) h += `<p>${esc(c.message)}</p>`;
     if (c.not_reused) h += `<p class=note>${esc(c.not_reused)}</p>`;
     if (c.source) h += `<p>${c.kind === "command" ? "Command" : "Source"} <code>${esc(c.source)}</code>${c.exit >= 0 ? ", exit status " + c.exit : ""}${c.attempts > 1 ? ", " + c.attempts + " attempts" : ""}</p>`;
     if (c.stderr) h += `<details${c.status === "ERROR" ? " open" : ""}><summary>stderr</summary><pre>${esc(c.stderr)}</pre></details>`;
     if (c.bless) h += `<p>Accept after making the images again: <code>${esc(c.bless)}</code><br>Accept this report's image: <code>${esc(meta.approve + " --filter " + shq(exact([c.id])))}</code></p>`;
-    h += `<p class=zoom>Zoom: <button data-z=0>fit (f)</button> <button data-z=1>1:1 (1)</button> <button data-z=2>2×</button> <button data-z=4>4×</button> <button data-z=8>8×</button></p>`;
+    h += `<p class=zoom>Zoom: <button data-z=0>fit (f)</button> <button data-z=1>1:1 (1)</button> <button data-z=2>2×</button> <button data-z=4>4×</button> <button data-z=8>8×</button>` +
+      ` <button class=largest>largest difference (m)</button> <button class=flicker>flicker (b)</button></p>`;
+    if (c.images_left_out) {
+      h += `<p class=note>Its images were not kept (<code>--report-images failures</code>): it passed. Golden: ` +
+        c.images.map((v) => `<code>${esc(v.golden_path)}</code>`).join(", ") + "</p>";
+    }
     for (const v of c.images) h += imageHtml(c, v);
+    c.failed_attempts.forEach((a, k) => {
+      h += `<details open class=attempt><summary>Attempt ${k + 1}: <span class="${a.status}">${a.status}</span> ${esc(a.message)}</summary>` +
+        a.images.map((p) => `<div class=images>${fig(p.golden, p.image + ": golden", p.golden_file, p.golden_stops)}` +
+          `${fig(p.new, p.image + ": new", p.new_file, p.new_stops)}${fig(p.diff, p.image + ": diff")}</div>`).join("") + "</details>";
+    });
     h += `<details><summary>parameters, timings</summary>${table(c.about)}${table(c.params)}${table(c.times)}</details>`;
     detail.innerHTML = h;
     detail.hidden = false;
     document.body.classList.add("panel");
     detail.querySelector(".close").addEventListener("click", close);
-    for (const b of detail.querySelectorAll(".zoom button")) b.addEventListener("click", () => setZoom(+b.dataset.z));
+    for (const b of detail.querySelectorAll(".zoom [data-z]")) b.addEventListener("click", () => setZoom(+b.dataset.z));
+    detail.querySelector(".largest").addEventListener("click", jumpToLargest);
+    detail.querySelector(".flicker").addEventListener("click", toggleFlicker);
+    detail.querySelector(".flicker").classList.toggle("on", !!flicker);
     for (const slider of detail.querySelectorAll(".slider")) {
       const top = slider.querySelector("img.top"), input = slider.querySelector("input");
       input.addEventListener("input", () => (top.style.clipPath = "inset(0 " + (100 - input.value) + "% 0 0)"));
     }
+    jumped = -1;
     setZoom(zoom);
     history.replaceState(null, "", "#case=" + encodeURIComponent(c.id));
   }
@@ -262,15 +288,129 @@
     document.body.classList.remove("panel");
     history.replaceState(null, "", "#");
   }
+  // A picture takes the zoom's size once loaded, and its view the picture's shape (its size at
+  // fit), so a zoomed picture scrolls inside the box it had at fit.
+  function sizePicture(img) {
+    if (!img.naturalWidth) return;
+    img.style.width = zoom ? img.naturalWidth * zoom + "px" : "";
+    img.closest(".view").style.aspectRatio = img.naturalWidth + " / " + img.naturalHeight;
+  }
+  detail.addEventListener("load", (e) => e.target.closest(".view") && sizePicture(e.target), true);
+  // A view's scale (shown pixels per image pixel), the image pixel at its centre, and the scroll
+  // that puts an image pixel there.
+  function scaleOf(box) {
+    const img = box.querySelector("img");
+    return img.naturalWidth ? img.getBoundingClientRect().width / img.naturalWidth : 0;
+  }
+  const centreOf = (box) => [(box.scrollLeft + box.clientWidth / 2) / scaleOf(box), (box.scrollTop + box.clientHeight / 2) / scaleOf(box)];
+  function centreAt(box, [x, y]) {
+    const s = scaleOf(box);
+    box.scrollLeft = x * s - box.clientWidth / 2;
+    box.scrollTop = y * s - box.clientHeight / 2;
+  }
+  // Zooming keeps each view's centre where it was.
   function setZoom(z) {
+    const views = Array.from(detail.querySelectorAll(".view")).filter(scaleOf);
+    const centres = views.map(centreOf);
     zoom = z;
     detail.classList.toggle("fit", z === 0);
-    for (const b of detail.querySelectorAll(".zoom button")) b.classList.toggle("on", +b.dataset.z === z);
-    for (const img of detail.querySelectorAll(".images img")) {
-      const apply = () => (img.style.width = z ? img.naturalWidth * z + "px" : "");
-      img.complete ? apply() : img.addEventListener("load", apply, { once: true });
-    }
+    for (const b of detail.querySelectorAll(".zoom [data-z]")) b.classList.toggle("on", +b.dataset.z === z);
+    for (const img of detail.querySelectorAll(".view img")) sizePicture(img);
+    views.forEach((box, k) => centreAt(box, centres[k]));
   }
+  // The views of one image pan together: scrolling (or dragging) one scrolls the others to the
+  // same spot; they are at the same zoom.
+  detail.addEventListener("scroll", (e) => {
+    const from = e.target;
+    if (!from.classList || !from.classList.contains("view")) return;
+    for (const to of from.closest(".images").querySelectorAll(".view")) {
+      to.scrollLeft = from.scrollLeft;
+      to.scrollTop = from.scrollTop;
+    }
+  }, true);
+  detail.addEventListener("pointerdown", (e) => {
+    const box = e.target.closest(".view");
+    if (!box || !zoom || e.button) return;
+    let x = e.clientX, y = e.clientY;
+    drag(e, (m) => {
+      box.scrollLeft -= m.clientX - x;
+      box.scrollTop -= m.clientY - y;
+      x = m.clientX;
+      y = m.clientY;
+    });
+  });
+  // `m`: the next image of the case (in turn) at its largest difference: zoomed in (8× from
+  // fit), each of its views centred on that pixel, marked.
+  let jumped = -1;
+  function jumpToLargest() {
+    const images = detail.querySelectorAll(".images[data-x]");
+    if (!images.length) return;
+    const at = images[(jumped = (jumped + 1) % images.length)];
+    const loaded = (img) => img.complete || new Promise((done) => ["load", "error"].forEach((e) => img.addEventListener(e, done)));
+    Promise.all(Array.from(at.querySelectorAll(".view img"), loaded)).then(() => {
+      setZoom(zoom || 8);
+      for (const mark of detail.querySelectorAll(".mark")) mark.remove();
+      const x = +at.dataset.x + 0.5, y = +at.dataset.y + 0.5;
+      for (const box of at.querySelectorAll(".view")) {
+        const img = box.querySelector("img");
+        if (!img.naturalWidth) continue;
+        box.firstChild.insertAdjacentHTML("beforeend", `<i class=mark style="left:${(100 * x) / img.naturalWidth}%;top:${(100 * y) / img.naturalHeight}%"></i>`);
+        centreAt(box, [x, y]);
+      }
+      at.scrollIntoView({ block: "nearest" });
+    });
+  }
+  // `b`: the swap view flickers, golden and new in turn every 500 ms, until `b` again; it goes
+  // on as the reviewer moves from case to case.
+  let flicker = 0;
+  function toggleFlicker() {
+    clearInterval(flicker);
+    flicker = flicker ? 0 : setInterval(() => detail.classList.toggle("flick"), 500);
+    detail.classList.remove("flick");
+    const button = detail.querySelector(".flicker"), swap = detail.querySelector(".swap");
+    if (button) button.classList.toggle("on", !!flicker);
+    if (flicker && swap) swap.scrollIntoView({ block: "nearest" });
+  }
+  // Follows the pointer from a pointerdown until it is released (window listeners: synthetic
+  // events, as a test sends, cannot capture the pointer).
+  function drag(e, onMove, onEnd) {
+    e.preventDefault();
+    document.body.classList.add("dragging");
+    addEventListener("pointermove", onMove);
+    addEventListener("pointerup", () => {
+      removeEventListener("pointermove", onMove);
+      document.body.classList.remove("dragging");
+      if (onEnd) onEnd();
+    }, { once: true });
+  }
+
+  // --- the panel's width: its left edge (#grip) drags, or moves by ←/→ when focused; the width
+  // is remembered (localStorage, which may throw for a page from disk: then it lasts as long as
+  // the page). The style keeps it within bounds as the window changes (report.css) -----------
+  const STORED = "aosuite.panel";
+  const setPanel = (px) => document.documentElement.style.setProperty("--panel", Math.round(px) + "px");
+  const panelWidth = () => detail.getBoundingClientRect().width; // as bounded
+  const keepWidth = () => {
+    try {
+      localStorage.setItem(STORED, Math.round(panelWidth()));
+    } catch (e) {}
+  };
+  try {
+    if (+localStorage.getItem(STORED)) setPanel(+localStorage.getItem(STORED));
+  } catch (e) {}
+  document.body.insertAdjacentHTML("beforeend", "<div id=grip role=separator aria-orientation=vertical tabindex=0 title=\"panel width: drag, or ←/→\"></div>");
+  $("grip").addEventListener("pointerdown", (e) => {
+    const right = detail.getBoundingClientRect().right; // the window's, less its scroll bar
+    drag(e, (m) => setPanel(right - m.clientX), keepWidth);
+  });
+  $("grip").addEventListener("keydown", (e) => {
+    const by = { ArrowLeft: 40, ArrowRight: -40 }[e.key];
+    if (!by) return;
+    e.preventDefault();
+    e.stopPropagation(); // not the table's keys
+    setPanel(panelWidth() + by);
+    keepWidth();
+  });
   // The next case of the list shown (the filtered table, or the page of failures) after (dir 1)
   // or before (dir -1) `from` that `want`s.
   function step(from, dir, want) {
@@ -306,6 +446,8 @@
       case "1": setZoom(1); break;
       case "+": case "=": setZoom(Math.min(16, (zoom || 1) * 2)); break;
       case "-": setZoom(zoom > 1 ? zoom / 2 : 0); break;
+      case "m": if (!detail.hidden) jumpToLargest(); break;
+      case "b": if (!detail.hidden) toggleFlicker(); break;
       default: return;
     }
     e.preventDefault();
