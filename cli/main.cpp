@@ -33,8 +33,8 @@ constexpr std::array kLibraryCommands{
                    kHarness},
     LibraryCommand{"report", "Merge shard reports (report merge --out DIR SHARD...)", kHarness},
     LibraryCommand{"tolerances",
-                   "Suggest each case's tightest tolerance from repeated runs (tolerances suggest "
-                   "SUITE --report DIR...)",
+                   "Suggest each case's tolerance from repeated runs, with a margin a held-back "
+                   "run needed (tolerances suggest SUITE --report DIR...)",
                    kHarness},
     LibraryCommand{"render", "Render a scene view with one AO technique", kBench},
     LibraryCommand{"scenes", "List built-in scenes and their views, or check scene files", kBench},

@@ -74,7 +74,24 @@ inline std::string extras_problem(const CLI::App& app, const char* command) {
 
 // Parses and runs a command library's app (its entry point's body); returns the exit code. The
 // launcher has its own C++ runtime (cli/CMakeLists.txt): nothing may unwind into it.
+// CLI11 names an option's value by its C++ type ("--scene TEXT=village"); an option that does
+// not name its own is named after itself here ("--scene SCENE=village").
+inline void name_option_values(CLI::App& app) {
+  for (CLI::Option* o : app.get_options()) {
+    const std::string type = o->get_type_name();
+    if (o->get_option_text().empty() && (type == "TEXT" || type == "INT" || type == "UINT" ||
+                                         type == "FLOAT" || type == "NUMBER")) {
+      std::string name = o->get_single_name();
+      std::transform(name.begin(), name.end(), name.begin(),
+                     [](char ch) { return ch == '-' ? '_' : std::toupper(ch); });
+      o->type_name(name);
+    }
+  }
+  for (CLI::App* sub : app.get_subcommands({})) name_option_values(*sub);
+}
+
 inline int run_library_app(CLI::App& app, int argc, char** argv, const int& rc) {
+  name_option_values(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -8,6 +8,7 @@
 
 #include <chrono>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -711,6 +712,31 @@ float = { rmse = { max = 0.01 } }
   EXPECT_EQ(images.at(1).at("image"), "frame_exr");
   EXPECT_EQ(images.at(1).at("status"), "FAIL");
   EXPECT_EQ(images.at(1).at("gates").at(0).at("metric"), "rmse") << images.at(1);
+}
+
+// Every command's help names each option's value by what it is ("--scene SCENE=village"), never
+// by its C++ type ("TEXT", "INT", "FLOAT").
+TEST_F(ImageCases, EveryOptionNamesItsValue) {
+  std::vector<std::string> commands = {"compare", "check", "bless", "report merge",
+                                       "tolerances suggest"};
+  if (has_ao_bench()) {
+    for (const char* c :
+         {"render", "scenes", "viewpoints", "pmi-study", "error", "sweep", "tune", "gl-info"})
+      commands.push_back(c);
+  }
+  for (const std::string& c : commands) {
+    const test::Outcome r = aosuite(c + " --help");
+    EXPECT_EQ(r.rc, 0) << c << r.err;
+    for (const char* type : {" TEXT", " INT", " UINT", " FLOAT", " NUMBER"}) {
+      for (std::size_t at = r.out.find(type); at != std::string::npos;
+           at = r.out.find(type, at + 1)) {
+        const char next =
+            at + std::strlen(type) < r.out.size() ? r.out[at + std::strlen(type)] : ' ';
+        EXPECT_FALSE(next == ' ' || next == '=' || next == '\n') << c << ":" << type << "\n"
+                                                                 << r.out;
+      }
+    }
+  }
 }
 
 // A reader that goes away (`| head -1`) does not stop a bless half way: every case is
