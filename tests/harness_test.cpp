@@ -14,6 +14,7 @@
 #include "harness/goldens.hpp"
 #include "harness/html_report.hpp"
 #include "harness/judge.hpp"
+#include "harness/pass_record.hpp"
 #include "harness/report_images.hpp"
 #include "harness/results.hpp"
 #include "harness/runner.hpp"
@@ -154,6 +155,33 @@ TEST_F(SuiteFile, MalformedImageCasesNameFileLineAndReason) {
   EXPECT_NE(error_of(head + "command = [\"a\", \"{oops}\"]\noutputs = [\"x.png\"]\n")
                 .find("s.toml:3:11: unknown placeholder '{oops}'"),
             std::string::npos);
+}
+
+// The first pass whose hash differs, and the ones before it that match; nothing to say when the
+// golden has no record or the two renders ran different passes (another blur setting).
+TEST(PassRecord, NamesTheFirstPassThatDiffers) {
+  const PassHashes golden = {{"gbuffer", "1"}, {"ao", "2"}, {"blur", "3"}, {"blend", "4"}};
+  PassHashes now = golden;
+  EXPECT_EQ(first_differing_pass(golden, now), "every pass identical");
+  now[3].second = "x";
+  EXPECT_EQ(first_differing_pass(golden, now), "blend differs (gbuffer, ao, blur identical)");
+  now[1].second = "x";
+  EXPECT_EQ(first_differing_pass(golden, now), "ao differs (gbuffer identical)");
+  now[0].second = "x";
+  EXPECT_EQ(first_differing_pass(golden, now), "gbuffer differs");
+  EXPECT_EQ(first_differing_pass({}, now), "");
+  EXPECT_EQ(first_differing_pass({{"gbuffer", "1"}, {"ao", "2"}, {"blend", "4"}}, now), "");
+
+  test::TempDir dir;
+  const fs::path png = dir / "with_ao.png";
+  EXPECT_EQ(pass_record(png), dir / "with_ao.passes.json");
+  EXPECT_TRUE(read_pass_record(png).empty());  // an older golden: no record
+  const std::vector<unsigned char> bytes = pass_record_bytes(golden);
+  std::ofstream(pass_record(png), std::ios::binary)
+      .write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+  EXPECT_EQ(read_pass_record(png), golden);
+  std::ofstream(pass_record(png)) << "{not json";
+  EXPECT_TRUE(read_pass_record(png).empty());
 }
 
 TEST(FolderSuite, PairsPngFilesByRelativePath) {
