@@ -72,8 +72,6 @@ inline std::string extras_problem(const CLI::App& app, const char* command) {
                      close ? fmt::format("; did you mean '{}'?", best) : "", help);
 }
 
-// Parses and runs a command library's app (its entry point's body); returns the exit code. The
-// launcher has its own C++ runtime (cli/CMakeLists.txt): nothing may unwind into it.
 // CLI11 names an option's value by its C++ type ("--scene TEXT=village"); an option that does
 // not name its own is named after itself here ("--scene SCENE=village").
 inline void name_option_values(CLI::App& app) {
@@ -90,6 +88,8 @@ inline void name_option_values(CLI::App& app) {
   for (CLI::App* sub : app.get_subcommands({})) name_option_values(*sub);
 }
 
+// Parses and runs a command library's app (its entry point's body); returns the exit code. The
+// launcher has its own C++ runtime (cli/CMakeLists.txt): nothing may unwind into it.
 inline int run_library_app(CLI::App& app, int argc, char** argv, const int& rc) {
   name_option_values(app);
   try {

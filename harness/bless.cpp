@@ -35,7 +35,8 @@ void write_case_goldens(const Suite& suite, const Case& c, const std::string& pl
     const fs::path target = bless_target(suite, c, image, platform, tag);
     writes.emplace_back(target, images.bytes.at(image));
     written += (written.empty() ? "" : ", ") + writes.back().first.string();
-    if (!r.pass_hashes.empty()) writes.emplace_back(pass_record(target), passes);
+    // Always for a rendered case, even empty: an older record must not outlive its golden.
+    if (!c.source) writes.emplace_back(pass_record(target), passes);
     // Regions need a map beside the golden: a black one (every pixel unpainted) to paint,
     // never over one that exists.
     const fs::path map = region_map(target, image);
@@ -80,6 +81,11 @@ void accept_deletion(const Suite& suite, const Case& c, CaseResult& r) {
 // outside the report. Throws saying the goldens are untouched.
 void read_reviewed_images(const fs::path& report_dir, const Case& c, const CaseResult& reported,
                           CaseImages& images) {
+  if (reported.images_left_out) {
+    throw std::runtime_error(
+        "it passed and its images were left out of the report (--report-images failures); "
+        "its goldens are untouched");
+  }
   for (const std::string& image : c.images) {
     const fs::path f = report_dir / "cases" / c.id / (image + ext_of(c, image));
     try {

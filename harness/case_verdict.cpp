@@ -74,7 +74,10 @@ void judge_case(const Suite& suite, const Case& c, const std::string& platform, 
     const double seconds = r.seconds;
     r = *prev;
     r.reused = true, r.seconds = seconds, r.attempts = 1;
-    if (r.status == Status::kFlaky) r.status = Status::kPass;  // this run passed at once
+    if (r.status == Status::kFlaky) {  // this run passed at once: the old attempts are not its
+      r.status = Status::kPass, r.message.clear();
+      r.failed_attempts.clear();
+    }
     return;
   }
   r.status = Status::kPass;

@@ -33,7 +33,7 @@ void check_once(const Suite& suite, const std::string& environment, const std::s
 void leave_out_images(const fs::path& report_dir, CaseResult& r) {
   std::error_code ec;
   fs::remove_all(report_dir / "cases" / r.id, ec);
-  r.files.clear();
+  r.files.clear(), r.failed_attempts.clear();
   r.images_left_out = true;
 }
 
@@ -44,6 +44,9 @@ Attempt keep_attempt(const fs::path& report_dir, const CaseResult& r, int k) {
   const std::string prefix = fmt::format("attempt{}_", k);
   std::map<std::string, std::string> renamed;  // a golden identical to its image shares its file
   for (const auto& [role, rel] : r.files) {
+    // An image's own role is set before it is made: a file there that this attempt did not
+    // make (it failed first) is an earlier run's, not this attempt's.
+    if (role.find(':') == std::string::npos && !r.image_hashes.contains(role)) continue;
     auto [it, fresh] = renamed.try_emplace(rel);
     if (fresh) {
       const fs::path from = report_dir / "cases" / rel;

@@ -246,15 +246,18 @@ void write_html_report(const RunResults& run, const fs::path& report_dir,
     // Each failing attempt of a retried case: its verdict and the pictures it left.
     nlohmann::json attempts = nlohmann::json::array();
     for (const Attempt& a : c.failed_attempts) {
+      // Its images by name, from its own files (the last attempt may have judged none).
+      std::set<std::string> names;
+      for (const auto& [role, rel] : a.files) names.insert(role.substr(role.find(':') + 1));
+      const auto file = [&](const std::string& role) {
+        const auto it = a.files.find(role);
+        return it == a.files.end() ? std::string() : it->second;
+      };
       nlohmann::json pictures = nlohmann::json::array();
-      for (const ImageVerdict& v : c.images) {
-        const auto file = [&](const std::string& role) {
-          const auto it = a.files.find(role);
-          return it == a.files.end() ? std::string() : it->second;
-        };
-        nlohmann::json p = {{"image", v.image}, {"diff", url(file("diff:" + v.image))}};
-        picture(p, "new", file(v.image));
-        picture(p, "golden", file("golden:" + v.image));
+      for (const std::string& name : names) {
+        nlohmann::json p = {{"image", name}, {"diff", url(file("diff:" + name))}};
+        picture(p, "new", file(name));
+        picture(p, "golden", file("golden:" + name));
         pictures.push_back(std::move(p));
       }
       attempts.push_back({{"status", status_name(a.status)},

@@ -19,7 +19,8 @@ std::string suggestions_toml(const Suite& suite, const std::vector<Suggestion>& 
                              const std::vector<std::filesystem::path>& reports,
                              const SuggestOptions& options);
 
-// "+12.5 % on each limit, the widest a held-back run needed (max_channel_delta in reports/c)".
+// "+12.5 % on each limit, the farthest a held-back run fell from the others' limit
+// (max_channel_delta in reports/c)".
 std::string margin_text(const Suggestion& s);
 
 // "flip = { max_mean = 0.01234, max_q3 = 0.2 }": a metric's gates as the suite writes them.

@@ -265,19 +265,23 @@ std::string image_name(const Reader& r, const toml::node& at, const fs::path& fi
                             kImageFormats + ")");
   }
   const std::string stem = file.stem().string();
+  if (!valid_name(stem)) {
+    r.fail(at.source(), "image file name '" + printable(file.filename().string()) +
+                            "' must be letters, digits, - _ . and not start with '.'");
+  }
+  return stem;
+}
+
+// Whether an image's name would clash with the report's own files beside its image.
+bool names_a_report_file(std::string_view name) {
   static constexpr std::string_view kReportPrefixes[] = {
       "golden_", "diff_", "thumb_", "heat_", "regions_", "ignored_", "abs_", "signed_"};
   // attempt<k>_: a retried case's failing attempt (check --retries).
-  const bool attempt = stem.starts_with("attempt") && stem.size() > 7 && std::isdigit(stem[7]);
-  if (!valid_name(stem) || stem == "case" || attempt ||
-      std::ranges::any_of(kReportPrefixes,
-                          [&](std::string_view p) { return stem.starts_with(p); })) {
-    r.fail(at.source(), "image file name '" + printable(file.filename().string()) +
-                            "' must be letters, digits, - _ . and not start with '.', golden_, "
-                            "diff_, thumb_, heat_, regions_, ignored_, abs_, signed_ or "
-                            "attempt<k> (the report's files)");
-  }
-  return stem;
+  const bool attempt = name.starts_with("attempt") && name.size() > 7 &&
+                       std::isdigit(static_cast<unsigned char>(name[7]));
+  return name == "case" || attempt || std::ranges::any_of(kReportPrefixes, [&](std::string_view p) {
+           return name.starts_with(p);
+         });
 }
 
 // A relative path that stays inside its folder.
@@ -411,6 +415,12 @@ Case image_case(const Reader& r, const fs::path& dir, const toml::table& t, Comm
     const std::string ext = type(names[i]);
     if (types.at(k.images[i]).size() > 1) k.images[i] += "_" + ext.substr(1);
     src->exts[k.images[i]] = ext;
+    if (names_a_report_file(k.images[i])) {
+      r.fail((command ? *t.get("outputs") : *files).source(),
+             "image '" + printable(names[i]) + "' would be named '" + k.images[i] +
+                 "', which must not be 'case' nor start with golden_, diff_, thumb_, heat_, "
+                 "regions_, ignored_, abs_, signed_ or attempt<k> (the report's files)");
+    }
   }
   std::set<std::string> seen;
   for (const std::string& image : k.images) {

@@ -159,7 +159,9 @@ Extremes merged(const std::vector<Stat>& stats, const std::vector<Extremes>& run
 
 // The limit that lets `extreme` through, widened by `margin` % of it and rounded outward.
 double limit_for(const Stat& s, double extreme, double margin) {
-  const double v = extreme + (s.is_max ? 1 : -1) * std::abs(extreme) * margin / 100;
+  double v = extreme + (s.is_max ? 1 : -1) * std::abs(extreme) * margin / 100;
+  // A min limit never crosses 0 by its margin: a gate widened past 0 would hold nothing.
+  if (!s.is_max && extreme > 0) v = std::max(v, 0.0);
   if (!s.whole) return round_outward(v, s.is_max);
   // A margin is a ratio of measured values: 6 widened by 1/6 is 7, not 7 plus a rounding error.
   const double snapped = std::abs(v - std::round(v)) < 1e-9 * std::abs(v) ? std::round(v) : v;
@@ -283,6 +285,10 @@ std::vector<double> held_back_margins(const std::vector<Stat>& stats,
   }
   s.margin_percent = round_outward(widest, true);
   if (widest == 0) s.margin_why = "no held-back run fell off the limits of the others";
+  if (widest > 100)
+    s.margin_notes.push_back(
+        "over 100 %: the runs vary more than their values; more runs "
+        "(or a look at why they differ) would give tighter limits");
   if (widest > 0 && !steady.empty())
     s.margin_notes.push_back(
         fmt::format("none on {}: the same in every run", fmt::join(steady, ", ")));

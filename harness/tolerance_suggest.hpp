@@ -33,8 +33,9 @@ struct Suggestion {
   // Limits left as the suite has them, and why ("flip max_mean: no run measured it ...").
   std::vector<std::string> kept;
   // The margin the limits got, in % of each measured value (rounded up to 4 significant digits
-  // for show), and why: "--margin", or "the widest a held-back run needed (max_mismatch_percent
-  // in reports/c)"; then the limits that got none or start elsewhere, and why.
+  // for show), and why: "--margin", or "the farthest a held-back run fell from the others' limit
+  // (max_mismatch_percent in reports/c)"; then the limits that got none or start elsewhere, and
+  // why.
   double margin_percent = 0;
   std::string margin_why;
   std::vector<std::string> margin_notes;

@@ -129,6 +129,11 @@ TEST_F(SuiteFile, MalformedImageCasesNameFileLineAndReason) {
   EXPECT_NE(error_of(head + "files = [\"a/x.png\", \"b/x.png\"]\n").find("two images named 'x'"),
             std::string::npos);
   EXPECT_NE(error_of(head + "files = [\"golden_x.png\"]\n").find("golden_"), std::string::npos);
+  // Two types of one stem are named apart by type: diff.png would become diff_png, which the
+  // report's diff of an image 'png' would be.
+  EXPECT_NE(
+      error_of(head + "files = [\"diff.png\", \"diff.exr\"]\n").find("would be named 'diff_png'"),
+      std::string::npos);
   EXPECT_NE(error_of(head + "command = [\"true\"]\noutputs = [\"../x.png\"]\n")
                 .find("must be a relative path inside"),
             std::string::npos);

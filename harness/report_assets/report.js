@@ -371,17 +371,21 @@
     if (button) button.classList.toggle("on", !!flicker);
     if (flicker && swap) swap.scrollIntoView({ block: "nearest" });
   }
-  // Follows the pointer from a pointerdown until it is released (window listeners: synthetic
-  // events, as a test sends, cannot capture the pointer).
+  // Follows the pointer from a pointerdown until it is released or the browser takes it over
+  // (window listeners: synthetic events, as a test sends, cannot capture the pointer).
   function drag(e, onMove, onEnd) {
     e.preventDefault();
     document.body.classList.add("dragging");
     addEventListener("pointermove", onMove);
-    addEventListener("pointerup", () => {
+    const end = () => {
       removeEventListener("pointermove", onMove);
+      removeEventListener("pointerup", end);
+      removeEventListener("pointercancel", end);
       document.body.classList.remove("dragging");
       if (onEnd) onEnd();
-    }, { once: true });
+    };
+    addEventListener("pointerup", end);
+    addEventListener("pointercancel", end);
   }
 
   // --- the panel's width: its left edge (#grip) drags, or moves by ←/→ when focused; the width
