@@ -4,6 +4,7 @@
 #include <toml++/toml.h>
 
 #include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
@@ -11,9 +12,11 @@
 #include <set>
 #include <stdexcept>
 #include <string>
+#include <system_error>
 
 #include "common/file_io.hpp"
 #include "common/printable.hpp"
+#include "common/sha256.hpp"
 #include "common/toml_reader.hpp"
 #include "renderer/scene/mesh_io.hpp"
 #include "renderer/scene/view_check.hpp"
@@ -25,6 +28,21 @@ namespace fs = std::filesystem;
 
 using SceneReader = TomlReader;
 
+// A [[meshes]] entry's `sha256`: 64 hex digits, as `sha256sum` prints them (either case),
+// returned in lowercase as sha256_hex gives them.
+std::string sha256_pin(const SceneReader& r, const toml::node& n) {
+  std::string hex = r.string(n, "sha256");
+  if (hex.size() != 64 || !std::all_of(hex.begin(), hex.end(), [](char c) {
+        return std::isxdigit(static_cast<unsigned char>(c));
+      })) {
+    r.fail(n.source(), fmt::format("sha256 must be 64 hex digits, not '{}'", hex));
+  }
+  std::transform(hex.begin(), hex.end(), hex.begin(), [](char c) {
+    return static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  });
+  return hex;
+}
+
 // The geometry of one [[meshes]] entry: a file or exactly one built-in primitive.
 Mesh mesh_geometry(const SceneReader& r, const toml::table& t) {
   const char* kinds[] = {"file", "box", "sphere", "quad", "plane"};
@@ -34,10 +52,29 @@ Mesh mesh_geometry(const SceneReader& r, const toml::table& t) {
     r.fail(t.source(), "a mesh needs exactly one of file, box, sphere, quad, plane");
   }
   const glm::vec3 colour(0.8f);
+  const toml::node* pin = t.get("sha256");
+  if (pin && !t.contains("file"))
+    r.fail(pin->source(), "sha256 pins a mesh file: this mesh has none");
   if (const toml::node* n = t.get("file")) {
-    const std::string file = r.string(*n, "file");
+    const fs::path file = r.file().parent_path() / r.string(*n, "file");
+    // A malformed pin is refused before the file is read, and a missing file keeps load_mesh's
+    // own error, pinned or not. load_mesh reads the file again: a pin guards against another
+    // copy of the mesh than the one the scene was made with, not against one changed mid-load.
+    const std::string expected = pin ? sha256_pin(r, *pin) : std::string();
+    if (std::error_code ec; pin && fs::exists(file, ec)) {
+      std::string actual;
+      try {
+        actual = sha256_hex(read_file(file));
+      } catch (const FileError& e) {
+        r.fail(n->source(), e.what());
+      }
+      if (actual != expected) {
+        r.fail(pin->source(), fmt::format("{}: SHA-256 is {}, the scene file pins {}",
+                                          file.string(), actual, expected));
+      }
+    }
     try {
-      return load_mesh(r.file().parent_path() / file);
+      return load_mesh(file);
     } catch (const std::exception& e) {
       r.fail(n->source(), e.what());
     }
@@ -90,8 +127,8 @@ std::uint64_t predicted_triangles(const SceneReader& r, const toml::table& t) {
 }
 
 Mesh read_mesh(const SceneReader& r, const toml::table& t) {
-  r.only_keys(t, {"file", "box", "sphere", "quad", "plane", "fit", "scale", "rotate_degrees",
-                  "on_ground", "translate", "colour"});
+  r.only_keys(t, {"file", "sha256", "box", "sphere", "quad", "plane", "fit", "scale",
+                  "rotate_degrees", "on_ground", "translate", "colour"});
   Mesh mesh = mesh_geometry(r, t);
   Placement p;
   if (const toml::node* n = t.get("fit")) p.fit = static_cast<float>(r.positive(*n, "fit"));

@@ -20,8 +20,9 @@ std::uint64_t max_scene_triangles();
 // Reads a scene file; mesh files are found relative to its folder. Throws aosuite::FileError
 // "<file>:<line>:<column>: <reason>" for malformed TOML, unknown keys, wrong types, missing or
 // out-of-range values, views the renderer would refuse (view_check.hpp), duplicate view names,
-// no views, meshes that cannot be loaded, and more triangles than max_scene_triangles() (counted
-// for primitives before any geometry is made).
+// no views, meshes that cannot be loaded, a mesh file whose SHA-256 is not its `sha256` pin
+// (checked before the mesh is parsed), and more triangles than max_scene_triangles() (counted for
+// primitives before any geometry is made).
 Scene load_scene_file(const std::filesystem::path& path);
 
 // A path ending in .toml is a scene file; anything else names a built-in scene.
