@@ -4,7 +4,9 @@
 #include <fmt/ranges.h>
 
 #include <algorithm>
+#include <cmath>
 #include <deque>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <stdexcept>
@@ -91,6 +93,15 @@ class Measurements {
   bool dirty_ = false;
 };
 
+// An error over the defaults' on the same pair, each with a floor added: errors this small (a
+// tenth of a per cent of AO's range, well below the reference's own noise at any ray count the
+// tune allows) are invisible, and a pair the defaults get almost exactly right must not let a
+// rounding decide.
+double ratio(double error, double default_error) {
+  constexpr double kNegligible = 1e-3;
+  return (error + kNegligible) / (default_error + kNegligible);
+}
+
 class Evaluator {
  public:
   Evaluator(const TuneSettings& s, const TuneSpace& space, Measurements& m)
@@ -138,6 +149,31 @@ class Evaluator {
       if (take(item)) sum += error(params, item), ++n;
     }
     return n ? sum / n : 0;
+  }
+
+  // Each (scene, radius) pair's error among the items `take` accepts, the mean over its views,
+  // by (scene index, radius index).
+  template <typename Take>
+  std::map<std::pair<std::size_t, std::size_t>, double> pair_errors(const rd::AoParams& params,
+                                                                    Take take) {
+    std::map<std::pair<std::size_t, std::size_t>, std::pair<double, int>> sums;
+    for (const Item& item : items_) {
+      if (!take(item)) continue;
+      auto& [sum, n] = sums[{item.scene_index, item.radius_index}];
+      sum += error(params, item), ++n;
+    }
+    std::map<std::pair<std::size_t, std::size_t>, double> out;
+    for (const auto& [pair, s] : sums) out[pair] = s.first / s.second;
+    return out;
+  }
+
+  // Each pair's error under `params` over the defaults' there (ratio()), in pair order.
+  template <typename Take>
+  std::vector<double> ratios(const rd::AoParams& params, const rd::AoParams& defaults, Take take) {
+    const auto p = pair_errors(params, take), d = pair_errors(defaults, take);
+    std::vector<double> out;
+    for (const auto& [pair, e] : p) out.push_back(ratio(e, d.at(pair)));
+    return out;
   }
 
  private:
@@ -197,6 +233,16 @@ class Evaluator {
   int renders_ = 0, reused_ = 0;
 };
 
+// The search's objective: the worst and the mean of the pairs' ratios, averaged (1 for the
+// defaults themselves). The worst alone would ignore every pair but one; the mean alone lets
+// one pair get much worse.
+double objective(const std::vector<double>& ratios) {
+  if (ratios.empty()) return 1;
+  double sum = 0;
+  for (double r : ratios) sum += r;
+  return 0.5 * (std::ranges::max(ratios) + sum / static_cast<double>(ratios.size()));
+}
+
 // Each measured scene's fold: its family, or the scene itself where it names none; a fold per
 // scene when the scenes make fewer than two families (nothing else could be left out).
 std::vector<std::string> fold_groups(const std::deque<rd::Scene>& scenes,
@@ -212,36 +258,50 @@ std::vector<std::string> fold_groups(const std::deque<rd::Scene>& scenes,
   return group;
 }
 
-// Each shrink's worst fold: every fold's parameters moved that share of the way from the
-// defaults, measured on the fold's own held-out scenes (never on those it searched on).
+// Each shrink on the held-out pairs: every fold's parameters moved that share of the way from
+// the defaults, measured on the fold's own held-out scenes (never on those it searched on).
 std::vector<ShrinkTrial> shrink_trials(Evaluator& ev, const TuneSpace& space, const TuneResult& out,
                                        const std::vector<std::string>& groups,
                                        const std::vector<std::string>& group,
-                                       const std::vector<rd::AoParams>& fold_params) {
+                                       const std::vector<rd::AoParams>& fold_params,
+                                       const HeldOutBar& bar, std::size_t radii) {
   std::vector<ShrinkTrial> trials;
   if (out.folds.empty()) return trials;
   for (double shrink : {0.0, 0.25, 0.5, 0.75, 1.0}) {
-    ShrinkTrial t{shrink, 0};
+    ShrinkTrial t{shrink, 0, 0, 0, 1, true, {}, {}};
+    double log_sum = 0;
     for (std::size_t f = 0; f < out.folds.size(); ++f) {
       const auto held = [&](const Item& i) { return group[i.scene_index] == groups[f]; };
-      const double defaults = ev.mean(out.defaults, held);
-      const double shrunk = ev.mean(space.between(out.defaults, fold_params[f], shrink), held);
-      t.worst_ratio = std::max(t.worst_ratio, defaults > 0 ? shrunk / defaults : 1.0);
+      const rd::AoParams p = space.between(out.defaults, fold_params[f], shrink);
+      double fold_log = 0;
+      const std::vector<double> ratios = ev.ratios(p, out.defaults, held);
+      for (double r : ratios) {
+        ++t.pairs, t.worse += r > 1, fold_log += std::log(r);
+        t.worst_ratio = std::max(t.worst_ratio, r);
+      }
+      log_sum += fold_log;
+      std::vector<double>& errors = t.fold_error.emplace_back();
+      for (std::size_t k = 0; k < radii; ++k)
+        errors.push_back(ev.mean(p, [&](const Item& i) { return held(i) && i.radius_index == k; }));
+      t.fold_ratio.push_back(
+          ratios.empty() ? 1 : std::exp(fold_log / static_cast<double>(ratios.size())));
     }
+    t.mean_ratio = t.pairs ? std::exp(log_sum / t.pairs) : 1;
+    t.within_bar = t.worse <= bar.worse_share * t.pairs && t.worst_ratio <= bar.worst_ratio;
     trials.push_back(t);
   }
   return trials;
 }
 
-// The shrink with the lowest worst ratio (the smaller on a tie), or 0 unless that beats the
-// defaults; 1 (the search's own result) when there were no folds to judge by.
+// The shrink within the bar with the lowest mean ratio (the smaller on a tie), or 0 unless that
+// beats the defaults; 1 (the search's own result) when there were no folds to judge by.
 double chosen_shrink(const std::vector<ShrinkTrial>& trials) {
   if (trials.empty()) return 1;
-  const ShrinkTrial* best = &trials.front();
+  const ShrinkTrial* best = nullptr;
   for (const ShrinkTrial& t : trials) {
-    if (t.worst_ratio < best->worst_ratio) best = &t;
+    if (t.within_bar && (!best || t.mean_ratio < best->mean_ratio)) best = &t;
   }
-  return best->worst_ratio < 1 ? best->shrink : 0;
+  return best && best->mean_ratio < 1 ? best->shrink : 0;
 }
 
 void check(const TuneSettings& s) {
@@ -277,7 +337,8 @@ TuneResult run_tune(const TuneSettings& s, const std::function<void(const TunePr
   // One search on the items `take` accepts, reporting as `stage`; saves after each trial.
   auto searched = [&](const std::string& stage, auto take) {
     const SearchResult r = search(
-        space, out.defaults, s.search, [&](const rd::AoParams& p) { return ev.mean(p, take); },
+        space, out.defaults, s.search,
+        [&](const rd::AoParams& p) { return objective(ev.ratios(p, out.defaults, take)); },
         [&](int trial, double best) {
           m.save();
           if (on) on({stage, trial, s.search.trials, best, false});
@@ -319,15 +380,16 @@ TuneResult run_tune(const TuneSettings& s, const std::function<void(const TunePr
     }
     out.folds.push_back(std::move(fold));
   }
-  out.shrink_trials = shrink_trials(ev, space, out, groups, group, fold_params);
+  out.shrink_trials =
+      shrink_trials(ev, space, out, groups, group, fold_params, s.bar, s.radii.size());
   out.shrink = chosen_shrink(out.shrink_trials);
-  const SearchResult all = searched("all scenes", [](const Item&) { return true; });
-  out.searched = all.best;
-  out.tuned = space.between(out.defaults, all.best, out.shrink);
   const auto every = [](const Item&) { return true; };
-  out.tuned_error = out.shrink == 1 ? all.error : ev.mean(out.tuned, every);
+  // A preset the folds keep at the defaults needs no search on every scene.
+  out.searched = out.shrink > 0 ? searched("all scenes", every).best : out.defaults;
+  out.tuned = space.between(out.defaults, out.searched, out.shrink);
+  out.tuned_error = ev.mean(out.tuned, every);
   out.tuned_taps = depth_taps(space, out.tuned);
-  out.default_error = ev.mean(out.defaults, [](const Item&) { return true; });
+  out.default_error = ev.mean(out.defaults, every);
   m.save();
   // Timed on the view with the most geometry pixels: the one where the AO does most work.
   const Item& busiest = *std::ranges::max_element(ev.items(), {}, &Item::pixels);

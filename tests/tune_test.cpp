@@ -218,7 +218,13 @@ class TuneRun : public ::testing::Test {
 TEST_F(TuneRun, NeverWorseThanTheDefaultsAndValidatedOnEachSceneLeftOut) {
   int progress = 0;
   const aosuite::ao::TuneResult r =
-      aosuite::ao::run_tune(s_, [&](const aosuite::ao::TuneProgress&) { ++progress; });
+      aosuite::ao::run_tune(s_, [&](const aosuite::ao::TuneProgress& p) {
+        // A candidate is judged by its error over the defaults': the search starts from them.
+        if (progress++ == 0) {
+          EXPECT_DOUBLE_EQ(p.best, 1);
+        }
+        EXPECT_LE(p.best, 1);
+      });
   EXPECT_GT(progress, 0);
   // GTAO's defaults fit the default budget and are the search's start.
   EXPECT_LE(r.tuned_error, r.default_error);
@@ -347,30 +353,67 @@ TEST_F(TuneRun, FoldsLeaveAFamilyOutAndAreMeasuredOnIt) {
   }
 }
 
-// The preset is the search moved toward the defaults by the share whose worst held-out fold
-// does best, and the defaults themselves unless that fold beats them: with one trial each
+// The preset is the search moved toward the defaults by the share whose held-out (scene,
+// radius) pairs do best in geometric mean among the shares within the bar (few pairs worse,
+// none by much), and the defaults themselves unless that share beats them: with one trial each
 // search returns where it starts, the defaults, so nothing beats them and they are kept.
-TEST_F(TuneRun, APresetMustBeatTheDefaultsOnEveryFoldOrIsTheDefaults) {
+TEST_F(TuneRun, APresetMustBeatTheDefaultsOnHeldOutPairsWithinTheBarOrIsTheDefaults) {
+  const auto check = [&](const aosuite::ao::TuneResult& r) {
+    ASSERT_EQ(r.shrink_trials.size(), 5u);
+    const aosuite::ao::ShrinkTrial& zero = r.shrink_trials.front();
+    EXPECT_EQ(zero.shrink, 0);
+    EXPECT_DOUBLE_EQ(zero.worst_ratio, 1);  // the defaults against themselves
+    EXPECT_DOUBLE_EQ(zero.mean_ratio, 1);
+    EXPECT_EQ(zero.worse, 0);
+    EXPECT_EQ(zero.pairs, 4);  // two folds of one scene, two radii each
+    const TuneSpace space(s_.technique);
+    EXPECT_EQ(space.key(r.tuned), space.key(space.between(r.defaults, r.searched, r.shrink)));
+    const auto chosen =
+        std::ranges::find(r.shrink_trials, r.shrink, &aosuite::ao::ShrinkTrial::shrink);
+    ASSERT_NE(chosen, r.shrink_trials.end());
+    EXPECT_TRUE(chosen->within_bar);
+    for (const aosuite::ao::ShrinkTrial& t : r.shrink_trials) {
+      EXPECT_EQ(t.within_bar,
+                t.worse <= s_.bar.worse_share * t.pairs && t.worst_ratio <= s_.bar.worst_ratio);
+      ASSERT_EQ(t.fold_ratio.size(), 2u);
+      if (t.within_bar) {
+        EXPECT_GE(t.mean_ratio, chosen->mean_ratio) << t.shrink;
+      }
+    }
+    if (r.shrink > 0) {
+      EXPECT_LT(chosen->mean_ratio, 1);
+    }
+    // A share's held-out errors per fold and radius: the defaults' at 0, the fold's search's at 1.
+    for (std::size_t f = 0; f < r.folds.size(); ++f) {
+      for (std::size_t k = 0; k < s_.radii.size(); ++k) {
+        EXPECT_DOUBLE_EQ(zero.fold_error.at(f).at(k), r.folds[f].default_error.at(k));
+        EXPECT_DOUBLE_EQ(r.shrink_trials.back().fold_error.at(f).at(k),
+                         r.folds[f].tuned_error.at(k));
+      }
+    }
+  };
+  s_.search.trials = 12;
   const aosuite::ao::TuneResult r = aosuite::ao::run_tune(s_);
-  ASSERT_EQ(r.shrink_trials.size(), 5u);
-  EXPECT_EQ(r.shrink_trials.front().shrink, 0);
-  EXPECT_DOUBLE_EQ(r.shrink_trials.front().worst_ratio, 1);  // the defaults against themselves
-  const TuneSpace space(s_.technique);
-  EXPECT_EQ(space.key(r.tuned), space.key(space.between(r.defaults, r.searched, r.shrink)));
-  const auto chosen =
-      std::ranges::find(r.shrink_trials, r.shrink, &aosuite::ao::ShrinkTrial::shrink);
-  ASSERT_NE(chosen, r.shrink_trials.end());
-  for (const aosuite::ao::ShrinkTrial& t : r.shrink_trials) {
-    EXPECT_GE(t.worst_ratio, chosen->worst_ratio) << t.shrink;
-  }
-  if (r.shrink > 0) {
-    EXPECT_LT(chosen->worst_ratio, 1);
-  }
+  check(r);
+  // No bar: the lowest mean of all; the strictest: no held-out pair may get worse.
+  s_.bar = {1, 100};
+  const aosuite::ao::TuneResult loose = aosuite::ao::run_tune(s_);
+  check(loose);
+  s_.bar = {0, 1};
+  const aosuite::ao::TuneResult strict = aosuite::ao::run_tune(s_);
+  check(strict);
+  const auto at = [](const aosuite::ao::TuneResult& t) {
+    return *std::ranges::find(t.shrink_trials, t.shrink, &aosuite::ao::ShrinkTrial::shrink);
+  };
+  EXPECT_EQ(at(strict).worse, 0);
+  EXPECT_LE(at(loose).mean_ratio, at(r).mean_ratio);
+  EXPECT_LE(at(r).mean_ratio, at(strict).mean_ratio);
 
   s_.search.trials = 1;
   s_.state = dir_ / "one_trial.json";
   const aosuite::ao::TuneResult kept = aosuite::ao::run_tune(s_);
   EXPECT_EQ(kept.shrink, 0);
+  const TuneSpace space(s_.technique);
   EXPECT_EQ(space.key(kept.tuned), space.key(kept.defaults));
   EXPECT_EQ(kept.tuned_error, kept.default_error);
 }
