@@ -17,6 +17,8 @@
 #include "ao/tune_run.hpp"
 #include "common/file_io.hpp"
 #include "reference/error_metrics.hpp"
+#include "renderer/renderer.hpp"
+#include "renderer/scene/scene.hpp"
 
 namespace {
 
@@ -58,6 +60,41 @@ TEST(TuneSpace, EveryTechniqueHasABuiltInTunedPreset) {
     rd::AoParams p = rd::default_params(t.id);
     aosuite::ao::apply_preset(preset, t.id, p);
     EXPECT_NO_THROW(rd::check_params(p)) << t.name;
+  }
+}
+
+// The built-in tuned presets mean the same at every scene scale (issue 45): every length they
+// set is a share of the radius or of the view, so a scene, its near plane and the radius scaled
+// together by 2^-17 or 2^17 (exact in float) give scale 1's AO. A preset length left in scene
+// units (bitmask's thickness of 1.09 units, before it became a share of the radius) moves
+// the AO by far more than the 1e-4 allowed.
+TEST(TuneSpace, TheTunedPresetsGiveTheSameAoAtEveryScale) {
+  rd::Renderer renderer;
+  const auto scene = [](const std::string& name, float scale) {
+    rd::Scene s = rd::builtin_scene(name);
+    rd::scale_scene(s, scale);
+    for (rd::View& v : s.views) v.near = 0.01f * scale;
+    return s;
+  };
+  for (const rd::TechniqueInfo& t : rd::techniques()) {
+    if (t.space != rd::Space::kScreen) continue;  // PMI's maps are per object, not per pixel
+    rd::RenderSettings rs;
+    rs.width = 96, rs.height = 54, rs.technique = t.id;
+    rs.params = rd::default_params(t.id);
+    aosuite::ao::apply_preset(aosuite::ao::find_preset("tuned", t.id), t.id, rs.params);
+    rs.outputs = rd::Outputs{false, false, false, true};
+    const float radius = 0.5f;
+    for (const char* name : {"corner", "village"}) {
+      rs.params.radius = radius;
+      const rd::Scene one_scene = scene(name, 1);
+      const cv::Mat one = renderer.render(one_scene, one_scene.views[0], rs).ao.clone();
+      for (float scale : {std::ldexp(1.0f, -17), std::ldexp(1.0f, 17)}) {
+        rs.params.radius = radius * scale;
+        const rd::Scene scaled = scene(name, scale);
+        const cv::Mat ao = renderer.render(scaled, scaled.views[0], rs).ao;
+        EXPECT_LE(cv::norm(one, ao, cv::NORM_INF), 1e-4) << t.name << " " << name << " " << scale;
+      }
+    }
   }
 }
 
