@@ -285,12 +285,14 @@ void add_tune_command(CLI::App& app, int& rc) {
                   "the measurements, reused by a rerun (default: the preset's name + .state.json)");
   cmd->add_option("--json", a->json, "write the result as JSON");
   cmd->add_option("--max-worse-share", a->s.bar.worse_share,
-                  "largest share of held-out (scene, radius) pairs the preset may make worse")
-      ->capture_default_str()
+                  "largest share of held-out (scene, radius) pairs the preset may make worse "
+                  "than the defaults (default 0.1)")
+      ->option_text("0..1")
       ->check(CLI::Range(0.0, 1.0));
   cmd->add_option("--max-worse-ratio", a->s.bar.worst_ratio,
-                  "largest held-out pair error over the defaults' the preset may have")
-      ->capture_default_str()
+                  "largest error over the defaults' the preset may have on a held-out pair "
+                  "(default 1.05)")
+      ->option_text(">=1")
       ->check(CLI::Range(1.0, 100.0));
   add_pipeline_option(cmd, a->pipeline);
   guarded(cmd, rc, "tune", [a] { return run_tune(*a); });

@@ -732,8 +732,9 @@ TEST_F(ImageCases, EveryOptionNamesItsValue) {
            at = r.out.find(type, at + 1)) {
         const char next =
             at + std::strlen(type) < r.out.size() ? r.out[at + std::strlen(type)] : ' ';
-        EXPECT_FALSE(next == ' ' || next == '=' || next == '\n') << c << ":" << type << "\n"
-                                                                 << r.out;
+        EXPECT_FALSE(next == ' ' || next == '=' || next == '\n' || next == ':')
+            << c << ":" << type << "\n"
+            << r.out;
       }
     }
   }
