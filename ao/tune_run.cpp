@@ -243,6 +243,24 @@ double objective(const std::vector<double>& ratios) {
   return 0.5 * (std::ranges::max(ratios) + sum / static_cast<double>(ratios.size()));
 }
 
+struct Spread {
+  double mean = 0, standard_error = 0;
+};
+
+// The mean of `v` and its standard error (the sample standard deviation over sqrt(n); 0 for
+// fewer than two values).
+Spread mean_and_standard_error(const std::vector<double>& v) {
+  Spread s;
+  if (v.empty()) return s;
+  const double n = static_cast<double>(v.size());
+  for (double x : v) s.mean += x / n;
+  if (v.size() < 2) return s;
+  double squares = 0;
+  for (double x : v) squares += (x - s.mean) * (x - s.mean);
+  s.standard_error = std::sqrt(squares / (n - 1) / n);
+  return s;
+}
+
 // Each measured scene's fold: its family, or the scene itself where it names none; a fold per
 // scene when the scenes make fewer than two families (nothing else could be left out).
 std::vector<std::string> fold_groups(const std::deque<rd::Scene>& scenes,
@@ -267,41 +285,47 @@ std::vector<ShrinkTrial> shrink_trials(Evaluator& ev, const TuneSpace& space, co
                                        const HeldOutBar& bar, std::size_t radii) {
   std::vector<ShrinkTrial> trials;
   if (out.folds.empty()) return trials;
-  for (double shrink : {0.0, 0.25, 0.5, 0.75, 1.0}) {
-    ShrinkTrial t{shrink, 0, 0, 0, 1, true, {}, {}};
-    double log_sum = 0;
+  for (int eighths = 0; eighths <= 8; ++eighths) {
+    ShrinkTrial t{eighths / 8.0, 0, 0, 0, 1, 0, true, {}, {}};
+    const double shrink = t.shrink;
+    std::vector<double> logs;
     for (std::size_t f = 0; f < out.folds.size(); ++f) {
       const auto held = [&](const Item& i) { return group[i.scene_index] == groups[f]; };
       const rd::AoParams p = space.between(out.defaults, fold_params[f], shrink);
       double fold_log = 0;
       const std::vector<double> ratios = ev.ratios(p, out.defaults, held);
       for (double r : ratios) {
-        ++t.pairs, t.worse += r > 1, fold_log += std::log(r);
+        ++t.pairs, t.worse += r > 1, fold_log += std::log(r), logs.push_back(std::log(r));
         t.worst_ratio = std::max(t.worst_ratio, r);
       }
-      log_sum += fold_log;
       std::vector<double>& errors = t.fold_error.emplace_back();
       for (std::size_t k = 0; k < radii; ++k)
         errors.push_back(ev.mean(p, [&](const Item& i) { return held(i) && i.radius_index == k; }));
       t.fold_ratio.push_back(
           ratios.empty() ? 1 : std::exp(fold_log / static_cast<double>(ratios.size())));
     }
-    t.mean_ratio = t.pairs ? std::exp(log_sum / t.pairs) : 1;
+    const Spread spread = mean_and_standard_error(logs);
+    t.mean_ratio = std::exp(spread.mean), t.log_se = spread.standard_error;
     t.within_bar = t.worse <= bar.worse_share * t.pairs && t.worst_ratio <= bar.worst_ratio;
     trials.push_back(t);
   }
   return trials;
 }
 
-// The shrink within the bar with the lowest mean ratio (the smaller on a tie), or 0 unless that
-// beats the defaults; 1 (the search's own result) when there were no folds to judge by.
+// The smallest share within the bar whose mean log ratio is within one standard error of the
+// best's (ShrinkTrial); 1 (the search's own result) when there were no folds to judge by.
 double chosen_shrink(const std::vector<ShrinkTrial>& trials) {
   if (trials.empty()) return 1;
   const ShrinkTrial* best = nullptr;
   for (const ShrinkTrial& t : trials) {
     if (t.within_bar && (!best || t.mean_ratio < best->mean_ratio)) best = &t;
   }
-  return best && best->mean_ratio < 1 ? best->shrink : 0;
+  if (!best) return 0;
+  const double enough = std::log(best->mean_ratio) + best->log_se;
+  for (const ShrinkTrial& t : trials) {  // in increasing share; share 0's log ratio is 0
+    if (t.within_bar && std::log(t.mean_ratio) <= enough) return t.shrink;
+  }
+  return 0;
 }
 
 void check(const TuneSettings& s) {

@@ -63,13 +63,17 @@ struct Fold {
 // How far the preset moves from the defaults towards what the search found (issue 45): each
 // fold's parameters moved a share `shrink` of the way from the defaults, measured on the
 // (scene, radius) pairs the fold left out, each pair's error (the mean over its views) as a
-// ratio to the defaults' there. The chosen share is the one with the lowest geometric mean ratio
-// among those within the bar, and 0 (the defaults kept) unless that mean is below 1.
+// ratio to the defaults' there. Of the shares within the bar, the best is the one with the
+// lowest geometric mean ratio; the chosen share is the smallest whose mean log ratio is within
+// one standard error of the best's (Breiman's one-standard-error rule: a gain the held-out pairs
+// cannot tell from noise is no evidence), so 0, the defaults, when the best's gain is within
+// its own standard error.
 struct ShrinkTrial {
   double shrink = 0;
   int pairs = 0, worse = 0;  // held-out pairs, and those worse than the defaults
   double worst_ratio = 1;    // the worst pair's error over the defaults' there
   double mean_ratio = 1;     // the pairs' geometric mean
+  double log_se = 0;         // the standard error of the pairs' mean log ratio
   bool within_bar = true;
   std::vector<double> fold_ratio;  // each fold's geometric mean ratio, in TuneResult::folds order
   // Each fold's AO RMSE per radius (TuneSettings::radii order), the mean over its held-out

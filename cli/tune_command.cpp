@@ -93,17 +93,20 @@ std::string shrink_text(const TuneArgs& a, const ao::TuneResult& r) {
   if (r.shrink_trials.empty()) return {};
   std::string tried;
   for (const ao::ShrinkTrial& t : r.shrink_trials)
-    tried += fmt::format("{}{:g}: mean {:.3f}, worst {:.3f}, {} of {} worse{}",
-                         tried.empty() ? "" : "; ", t.shrink, t.mean_ratio, t.worst_ratio, t.worse,
-                         t.pairs, t.within_bar ? "" : " (over the bar)");
+    tried += fmt::format("{}{:g}: mean {:.3f} (log ±{:.3f}), worst {:.3f}, {} of {} worse{}",
+                         tried.empty() ? "" : "; ", t.shrink, t.mean_ratio, t.log_se, t.worst_ratio,
+                         t.worse, t.pairs, t.within_bar ? "" : " (over the bar)");
   const std::string chosen =
-      r.shrink == 0 ? "the defaults kept: no share within the bar beat them"
-                    : fmt::format("the search's parameters moved {:g} of the way from the defaults",
-                                  r.shrink);
+      r.shrink == 0
+          ? "the defaults kept: no share within the bar beat them by more than its standard error"
+          : fmt::format("the search's parameters moved {:g} of the way from the defaults",
+                        r.shrink);
   return fmt::format(
       "Chosen on held-out pairs (each family left out in turn, its (scene, radius) pairs' error "
       "over the defaults'), by the share of the way from the defaults to each fold's search, "
-      "within the bar of at most {:g} % of pairs worse and none by over {:g} %: {}. So {}.",
+      "within the bar of at most {:g} % of pairs worse and none by over {:g} %: {}. The "
+      "smallest share within the bar and within one standard error of the best mean is chosen. "
+      "So {}.",
       100 * a.s.bar.worse_share, 100 * (a.s.bar.worst_ratio - 1), tried, chosen);
 }
 
@@ -123,6 +126,7 @@ nlohmann::ordered_json result_json(const TuneArgs& a, const ao::TuneResult& r) {
                       {"worse", t.worse},
                       {"worst_ratio", t.worst_ratio},
                       {"mean_ratio", t.mean_ratio},
+                      {"log_se", t.log_se},
                       {"fold_ratio", t.fold_ratio},
                       {"fold_error", t.fold_error},
                       {"within_bar", t.within_bar}});

@@ -390,17 +390,19 @@ TEST_F(TuneRun, FoldsLeaveAFamilyOutAndAreMeasuredOnIt) {
   }
 }
 
-// The preset is the search moved toward the defaults by the share whose held-out (scene,
-// radius) pairs do best in geometric mean among the shares within the bar (few pairs worse,
-// none by much), and the defaults themselves unless that share beats them: with one trial each
-// search returns where it starts, the defaults, so nothing beats them and they are kept.
+// The preset is the search moved toward the defaults by a share chosen on the held-out (scene,
+// radius) pairs: among the shares within the bar (few pairs worse, none by much), the smallest
+// whose geometric mean ratio is within one standard error of the best's, and the defaults
+// themselves unless that beats them: with one trial each search returns where it starts, the
+// defaults, so nothing beats them and they are kept.
 TEST_F(TuneRun, APresetMustBeatTheDefaultsOnHeldOutPairsWithinTheBarOrIsTheDefaults) {
   const auto check = [&](const aosuite::ao::TuneResult& r) {
-    ASSERT_EQ(r.shrink_trials.size(), 5u);
+    ASSERT_EQ(r.shrink_trials.size(), 9u);  // eighths
     const aosuite::ao::ShrinkTrial& zero = r.shrink_trials.front();
     EXPECT_EQ(zero.shrink, 0);
     EXPECT_DOUBLE_EQ(zero.worst_ratio, 1);  // the defaults against themselves
     EXPECT_DOUBLE_EQ(zero.mean_ratio, 1);
+    EXPECT_DOUBLE_EQ(zero.log_se, 0);
     EXPECT_EQ(zero.worse, 0);
     EXPECT_EQ(zero.pairs, 4);  // two folds of one scene, two radii each
     const TuneSpace space(s_.technique);
@@ -409,18 +411,25 @@ TEST_F(TuneRun, APresetMustBeatTheDefaultsOnHeldOutPairsWithinTheBarOrIsTheDefau
         std::ranges::find(r.shrink_trials, r.shrink, &aosuite::ao::ShrinkTrial::shrink);
     ASSERT_NE(chosen, r.shrink_trials.end());
     EXPECT_TRUE(chosen->within_bar);
+    const aosuite::ao::ShrinkTrial* best = &zero;
     for (const aosuite::ao::ShrinkTrial& t : r.shrink_trials) {
       EXPECT_EQ(t.within_bar,
                 t.worse <= s_.bar.worse_share * t.pairs && t.worst_ratio <= s_.bar.worst_ratio);
       ASSERT_EQ(t.fold_ratio.size(), 2u);
-      if (t.within_bar) {
-        EXPECT_GE(t.mean_ratio, chosen->mean_ratio) << t.shrink;
+      if (t.within_bar && t.mean_ratio < best->mean_ratio) best = &t;
+    }
+    const double enough = std::log(best->mean_ratio) + best->log_se;
+    EXPECT_LE(std::log(chosen->mean_ratio), enough);
+    for (const aosuite::ao::ShrinkTrial& t : r.shrink_trials) {
+      if (t.shrink < chosen->shrink && t.within_bar) {
+        EXPECT_GT(std::log(t.mean_ratio), enough) << t.shrink;
       }
     }
     if (r.shrink > 0) {
       EXPECT_LT(chosen->mean_ratio, 1);
     }
-    // A share's held-out errors per fold and radius: the defaults' at 0, the fold's search's at 1.
+    // A share's held-out errors per fold and radius: the defaults' at 0, the fold's
+    // search's at 1.
     for (std::size_t f = 0; f < r.folds.size(); ++f) {
       for (std::size_t k = 0; k < s_.radii.size(); ++k) {
         EXPECT_DOUBLE_EQ(zero.fold_error.at(f).at(k), r.folds[f].default_error.at(k));
@@ -443,8 +452,6 @@ TEST_F(TuneRun, APresetMustBeatTheDefaultsOnHeldOutPairsWithinTheBarOrIsTheDefau
     return *std::ranges::find(t.shrink_trials, t.shrink, &aosuite::ao::ShrinkTrial::shrink);
   };
   EXPECT_EQ(at(strict).worse, 0);
-  EXPECT_LE(at(loose).mean_ratio, at(r).mean_ratio);
-  EXPECT_LE(at(r).mean_ratio, at(strict).mean_ratio);
 
   s_.search.trials = 1;
   s_.state = dir_ / "one_trial.json";
