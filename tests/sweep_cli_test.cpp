@@ -248,9 +248,8 @@ TEST(SweepCli, APresetAppliesUnderTheTablesParams) {
     if (row["technique"] == "ue4") {
       EXPECT_TRUE(row["params"].contains("radius_scale")) << row;
       EXPECT_LE(row["samples"].get<int>() * 6, 18) << "the tuned UE4 holds the 18-tap budget";
-    } else {  // PMI's tuned map: a fainter occlusion than the paper's
+    } else {  // PMI's tuned preset keeps the paper's map (its tune found no held-out gain)
       EXPECT_EQ(row["technique"], "pmi");
-      EXPECT_LT(row["intensity"].get<double>(), 1) << row;
       EXPECT_EQ(row["params"]["contrast"], "2") << "the table's params win over the preset's";
     }
   }
