@@ -5,7 +5,8 @@ families: each family of scenes left out in turn, the preset's search run on the
 
 1. Per technique, issue 45's bar: the share of the way from the defaults the tune chose, and at
    that share the held-out (scene, radius) pairs, how many got worse than the defaults, the
-   worst ratio and the geometric mean ratio.
+   worst ratio and the geometric mean ratio; and whether the preset (the all-scenes search moved
+   by that share) differs from the defaults at all.
 2. Per family and radius: the techniques ranked at their defaults and tuned (the chosen share of
    each fold's search), and the best tuned technique against the best default one. A technique
    that left a scene of the family out (PMI: the plane, ground alone) is ranked only where its
@@ -31,14 +32,15 @@ def bar_table(runs):
           f"than {100 * (bar['worst_ratio'] - 1):g} %.")
     print()
     print("| technique | share chosen | held-out pairs | worse | worst ratio | geometric mean "
-          "ratio | per family (geometric mean) | depth taps | AO ms at 320×180 |")
-    print("| --- | --- | --- | --- | --- | --- | --- | --- | --- |")
+          "ratio | per family (geometric mean) | preset | depth taps | AO ms at 320×180 |")
+    print("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |")
     for r in runs:
         pick, _ = chosen(r)
         families = ", ".join(f"{f['held_out']} {x:.3f}"
                              for f, x in zip(r["folds"], pick["fold_ratio"]))
         print(f"| {r['technique']} | {pick['shrink']:g} | {pick['pairs']} | {pick['worse']} | "
               f"{pick['worst_ratio']:.3f} | {pick['mean_ratio']:.3f} | {families} | "
+              f"{'the defaults' if r['preset'] == r['default'] else 'moved'} | "
               f"{r['taps']['default']} → {r['taps']['tuned']} | "
               f"{r['ao_ms']['default']:.1f} → {r['ao_ms']['tuned']:.1f} |")
     print()
