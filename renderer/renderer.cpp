@@ -65,6 +65,9 @@ struct Renderer::State {
   GBuffer gbuffer;
   Texture ao, no_ao, with_ao, ao_only;
   Framebuffer ao_fb, blend_fb;
+  // The AO before the blur, copied on the GPU when pass hashes are asked for, so its read-back
+  // happens after the timed frame. Made on first use.
+  Texture unblurred_ao;
 
   void allocate(int w, int h) {
     width = w, height = h;
@@ -73,6 +76,7 @@ struct Renderer::State {
     no_ao = make_texture(GL_RGBA8, w, h);
     with_ao = make_texture(GL_RGBA8, w, h);
     ao_only = make_texture(GL_RGBA8, w, h);
+    unblurred_ao = Texture();
     // Full-resolution AO targets share the G-buffer's depth so sky pixels are never shaded.
     ao_fb = make_framebuffer({ao.get()}, gbuffer.zbuffer.get());
     blend_fb = make_framebuffer({no_ao.get(), with_ao.get(), ao_only.get()});
@@ -199,10 +203,10 @@ Images Renderer::render(const Scene& scene, const View& view, const RenderSettin
            st.ao_pass(s.technique, pipeline).run(st.gbuffer, camera, s.params, ao_target))
         timers.push_back(std::move(t));
     }
-    if (s.outputs.pass_hashes) {  // before the blur overwrites it
-      out.pass_hashes.emplace_back(
-          "ao",
-          texels_hash({read_texture(st.ao.get(), s.width, s.height, GL_RED, GL_FLOAT, CV_32F)}));
+    if (s.outputs.pass_hashes && s.params.blur != Blur::kNone) {  // before the blur overwrites it
+      if (st.unblurred_ao.get() == 0) st.unblurred_ao = make_texture(GL_R32F, s.width, s.height);
+      glCopyImageSubData(st.ao.get(), GL_TEXTURE_2D, 0, 0, 0, 0, st.unblurred_ao.get(),
+                         GL_TEXTURE_2D, 0, 0, 0, 0, s.width, s.height, 1);
     }
     if (s.params.blur != Blur::kNone) {
       timers.push_back(st.blur(default_pipeline()).run(st.gbuffer, s.params.blur, st.ao.get()));
@@ -234,11 +238,16 @@ Images Renderer::render(const Scene& scene, const View& view, const RenderSettin
     const auto floats = [&](const Texture& t, GLenum format, int type) {
       return read_texture(t.get(), w, h, format, GL_FLOAT, type);
     };
-    out.pass_hashes.emplace(out.pass_hashes.begin(), "gbuffer",
-                            texels_hash({out.depth, floats(st.gbuffer.normal, GL_RGBA, CV_32FC4),
-                                         rgba(st.gbuffer.albedo)}));
-    if (want_ao && s.params.blur != Blur::kNone)
-      out.pass_hashes.emplace_back("blur", texels_hash({floats(st.ao, GL_RED, CV_32F)}));
+    out.pass_hashes.emplace_back(
+        "gbuffer", texels_hash({out.depth, floats(st.gbuffer.normal, GL_RGBA, CV_32FC4),
+                                rgba(st.gbuffer.albedo)}));
+    if (want_ao) {
+      const bool blurred = s.params.blur != Blur::kNone;
+      out.pass_hashes.emplace_back(
+          "ao", texels_hash({floats(blurred ? st.unblurred_ao : st.ao, GL_RED, CV_32F)}));
+      if (blurred)
+        out.pass_hashes.emplace_back("blur", texels_hash({floats(st.ao, GL_RED, CV_32F)}));
+    }
     if (s.outputs.no_ao || s.outputs.with_ao || s.outputs.ao_only)
       out.pass_hashes.emplace_back("blend", texels_hash({out.no_ao, out.with_ao, out.ao_only}));
   }
