@@ -93,15 +93,6 @@ class Measurements {
   bool dirty_ = false;
 };
 
-// An error over the defaults' on the same pair, each with a floor added: errors this small (a
-// tenth of a per cent of AO's range, well below the reference's own noise at any ray count the
-// tune allows) are invisible, and a pair the defaults get almost exactly right must not let a
-// rounding decide.
-double ratio(double error, double default_error) {
-  constexpr double kNegligible = 1e-3;
-  return (error + kNegligible) / (default_error + kNegligible);
-}
-
 class Evaluator {
  public:
   Evaluator(const TuneSettings& s, const TuneSpace& space, Measurements& m)
@@ -167,12 +158,12 @@ class Evaluator {
     return out;
   }
 
-  // Each pair's error under `params` over the defaults' there (ratio()), in pair order.
+  // Each pair's error under `params` over the defaults' there (error_ratio), in pair order.
   template <typename Take>
   std::vector<double> ratios(const rd::AoParams& params, const rd::AoParams& defaults, Take take) {
     const auto p = pair_errors(params, take), d = pair_errors(defaults, take);
     std::vector<double> out;
-    for (const auto& [pair, e] : p) out.push_back(ratio(e, d.at(pair)));
+    for (const auto& [pair, e] : p) out.push_back(error_ratio(e, d.at(pair)));
     return out;
   }
 
@@ -233,34 +224,6 @@ class Evaluator {
   int renders_ = 0, reused_ = 0;
 };
 
-// The search's objective: the worst and the mean of the pairs' ratios, averaged (1 for the
-// defaults themselves). The worst alone would ignore every pair but one; the mean alone lets
-// one pair get much worse.
-double objective(const std::vector<double>& ratios) {
-  if (ratios.empty()) return 1;
-  double sum = 0;
-  for (double r : ratios) sum += r;
-  return 0.5 * (std::ranges::max(ratios) + sum / static_cast<double>(ratios.size()));
-}
-
-struct Spread {
-  double mean = 0, standard_error = 0;
-};
-
-// The mean of `v` and its standard error (the sample standard deviation over sqrt(n); 0 for
-// fewer than two values).
-Spread mean_and_standard_error(const std::vector<double>& v) {
-  Spread s;
-  if (v.empty()) return s;
-  const double n = static_cast<double>(v.size());
-  for (double x : v) s.mean += x / n;
-  if (v.size() < 2) return s;
-  double squares = 0;
-  for (double x : v) squares += (x - s.mean) * (x - s.mean);
-  s.standard_error = std::sqrt(squares / (n - 1) / n);
-  return s;
-}
-
 // Each measured scene's fold: its family, or the scene itself where it names none; a fold per
 // scene when the scenes make fewer than two families (nothing else could be left out).
 std::vector<std::string> fold_groups(const std::deque<rd::Scene>& scenes,
@@ -282,50 +245,30 @@ std::vector<ShrinkTrial> shrink_trials(Evaluator& ev, const TuneSpace& space, co
                                        const std::vector<std::string>& groups,
                                        const std::vector<std::string>& group,
                                        const std::vector<rd::AoParams>& fold_params,
-                                       const HeldOutBar& bar, std::size_t radii) {
+                                       const HeldOutBar& bar, std::size_t radii, int budget) {
   std::vector<ShrinkTrial> trials;
   if (out.folds.empty()) return trials;
   for (int eighths = 0; eighths <= 8; ++eighths) {
-    ShrinkTrial t{eighths / 8.0, 0, 0, 0, 1, 0, true, {}, {}};
-    const double shrink = t.shrink;
-    std::vector<double> logs;
+    ShrinkTrial t;
+    t.shrink = eighths / 8.0;
+    std::vector<double> all;
     for (std::size_t f = 0; f < out.folds.size(); ++f) {
       const auto held = [&](const Item& i) { return group[i.scene_index] == groups[f]; };
-      const rd::AoParams p = space.between(out.defaults, fold_params[f], shrink);
-      double fold_log = 0;
+      const rd::AoParams p = space.between(out.defaults, fold_params[f], t.shrink);
+      t.within_budget = t.within_budget && (t.shrink == 0 || depth_taps(space, p) <= budget);
       const std::vector<double> ratios = ev.ratios(p, out.defaults, held);
-      for (double r : ratios) {
-        ++t.pairs, t.worse += r > 1, fold_log += std::log(r), logs.push_back(std::log(r));
-        t.worst_ratio = std::max(t.worst_ratio, r);
-      }
+      ShrinkTrial fold;
+      summarise(fold, ratios, bar);
+      t.fold_ratio.push_back(fold.mean_ratio);
+      all.insert(all.end(), ratios.begin(), ratios.end());
       std::vector<double>& errors = t.fold_error.emplace_back();
       for (std::size_t k = 0; k < radii; ++k)
         errors.push_back(ev.mean(p, [&](const Item& i) { return held(i) && i.radius_index == k; }));
-      t.fold_ratio.push_back(
-          ratios.empty() ? 1 : std::exp(fold_log / static_cast<double>(ratios.size())));
     }
-    const Spread spread = mean_and_standard_error(logs);
-    t.mean_ratio = std::exp(spread.mean), t.log_se = spread.standard_error;
-    t.within_bar = t.worse <= bar.worse_share * t.pairs && t.worst_ratio <= bar.worst_ratio;
+    summarise(t, all, bar);
     trials.push_back(t);
   }
   return trials;
-}
-
-// The smallest share within the bar whose mean log ratio is within one standard error of the
-// best's (ShrinkTrial); 1 (the search's own result) when there were no folds to judge by.
-double chosen_shrink(const std::vector<ShrinkTrial>& trials) {
-  if (trials.empty()) return 1;
-  const ShrinkTrial* best = nullptr;
-  for (const ShrinkTrial& t : trials) {
-    if (t.within_bar && (!best || t.mean_ratio < best->mean_ratio)) best = &t;
-  }
-  if (!best) return 0;
-  const double enough = std::log(best->mean_ratio) + best->log_se;
-  for (const ShrinkTrial& t : trials) {  // in increasing share; share 0's log ratio is 0
-    if (t.within_bar && std::log(t.mean_ratio) <= enough) return t.shrink;
-  }
-  return 0;
 }
 
 void check(const TuneSettings& s) {
@@ -404,13 +347,20 @@ TuneResult run_tune(const TuneSettings& s, const std::function<void(const TunePr
     }
     out.folds.push_back(std::move(fold));
   }
-  out.shrink_trials =
-      shrink_trials(ev, space, out, groups, group, fold_params, s.bar, s.radii.size());
-  out.shrink = chosen_shrink(out.shrink_trials);
+  out.shrink_trials = shrink_trials(ev, space, out, groups, group, fold_params, s.bar,
+                                    s.radii.size(), s.search.budget_taps);
+  out.shrink = choose_shrink(out.shrink_trials);
   const auto every = [](const Item&) { return true; };
   // A preset the folds keep at the defaults needs no search on every scene.
   out.searched = out.shrink > 0 ? searched("all scenes", every).best : out.defaults;
   out.tuned = space.between(out.defaults, out.searched, out.shrink);
+  // Whole-number parameters rounded between the defaults and the search can cost more than
+  // either: a share whose preset is over the budget is not taken.
+  while (out.shrink > 0 && depth_taps(space, out.tuned) > s.search.budget_taps) {
+    std::ranges::find(out.shrink_trials, out.shrink, &ShrinkTrial::shrink)->within_budget = false;
+    out.shrink = choose_shrink(out.shrink_trials);
+    out.tuned = space.between(out.defaults, out.searched, out.shrink);
+  }
   out.tuned_error = ev.mean(out.tuned, every);
   out.tuned_taps = depth_taps(space, out.tuned);
   out.default_error = ev.mean(out.defaults, every);

@@ -18,17 +18,10 @@
 #include <string>
 #include <vector>
 
+#include "ao/tune_choice.hpp"
 #include "ao/tune_search.hpp"
 
 namespace aosuite::ao {
-
-// What a preset may cost on scenes it was not tuned on (issue 45): at most a share
-// `worse_share` of the held-out (scene, radius) pairs worse than the defaults, none by a ratio
-// over `worst_ratio`.
-struct HeldOutBar {
-  double worse_share = 0.1;
-  double worst_ratio = 1.05;
-};
 
 struct TuneSettings {
   renderer::Technique technique = renderer::Technique::kGtao;
@@ -58,27 +51,6 @@ struct Fold {
   std::vector<double> default_error, tuned_error;
   std::string params;  // TuneSpace::key of what this fold's search found
   std::vector<HeldOutScene> scenes;
-};
-
-// How far the preset moves from the defaults towards what the search found (issue 45): each
-// fold's parameters moved a share `shrink` of the way from the defaults, measured on the
-// (scene, radius) pairs the fold left out, each pair's error (the mean over its views) as a
-// ratio to the defaults' there. Of the shares within the bar, the best is the one with the
-// lowest geometric mean ratio; the chosen share is the smallest whose mean log ratio is within
-// one standard error of the best's (Breiman's one-standard-error rule: a gain the held-out pairs
-// cannot tell from noise is no evidence), so 0, the defaults, when the best's gain is within
-// its own standard error.
-struct ShrinkTrial {
-  double shrink = 0;
-  int pairs = 0, worse = 0;  // held-out pairs, and those worse than the defaults
-  double worst_ratio = 1;    // the worst pair's error over the defaults' there
-  double mean_ratio = 1;     // the pairs' geometric mean
-  double log_se = 0;         // the standard error of the pairs' mean log ratio
-  bool within_bar = true;
-  std::vector<double> fold_ratio;  // each fold's geometric mean ratio, in TuneResult::folds order
-  // Each fold's AO RMSE per radius (TuneSettings::radii order), the mean over its held-out
-  // views: what techniques are ranked by on a family none of them was tuned on.
-  std::vector<std::vector<double>> fold_error;
 };
 
 struct TuneResult {

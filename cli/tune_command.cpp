@@ -79,7 +79,7 @@ HeldOutRatios held_out_ratios(const std::vector<ao::Fold>& folds) {
   HeldOutRatios out;
   for (const ao::Fold& f : folds) {
     for (const ao::HeldOutScene& h : f.scenes) {
-      const double ratio = h.tuned_error / h.default_error;
+      const double ratio = ao::error_ratio(h.tuned_error, h.default_error);
       ++out.count, out.worse += ratio > 1;
       if (ratio > out.worst) out.worst = ratio, out.worst_scene = h.scene;
     }
@@ -89,16 +89,28 @@ HeldOutRatios held_out_ratios(const std::vector<ao::Fold>& folds) {
 
 // Why the preset is what it is, for its header and the terminal: the shrinks tried on the
 // folds' held-out (scene, radius) pairs and the one chosen. Empty without folds.
+std::string space_key(const TuneArgs& a, const rd::AoParams& p) {
+  return ao::TuneSpace(a.s.technique).key(p);
+}
+
 std::string shrink_text(const TuneArgs& a, const ao::TuneResult& r) {
   if (r.shrink_trials.empty()) return {};
   std::string tried;
   for (const ao::ShrinkTrial& t : r.shrink_trials)
     tried += fmt::format("{}{:g}: mean {:.3f} (log ±{:.3f}), worst {:.3f}, {} of {} worse{}",
                          tried.empty() ? "" : "; ", t.shrink, t.mean_ratio, t.log_se, t.worst_ratio,
-                         t.worse, t.pairs, t.within_bar ? "" : " (over the bar)");
+                         t.worse, t.pairs,
+                         !t.within_bar      ? " (over the bar)"
+                         : !t.within_budget ? " (over the depth-tap budget)"
+                                            : "");
   const std::string chosen =
       r.shrink == 0
           ? "the defaults kept: no share within the bar beat them by more than its standard error"
+      : space_key(a, r.searched) == space_key(a, r.defaults)
+          ? fmt::format(
+                "share {:g}, but the search on every scene found nothing better than "
+                "the defaults: the preset is the defaults",
+                r.shrink)
           : fmt::format("the search's parameters moved {:g} of the way from the defaults",
                         r.shrink);
   return fmt::format(
@@ -129,7 +141,8 @@ nlohmann::ordered_json result_json(const TuneArgs& a, const ao::TuneResult& r) {
                       {"log_se", t.log_se},
                       {"fold_ratio", t.fold_ratio},
                       {"fold_error", t.fold_error},
-                      {"within_bar", t.within_bar}});
+                      {"within_bar", t.within_bar},
+                      {"within_budget", t.within_budget}});
   j["shrink"] = {
       {"chosen", r.shrink},
       {"bar", {{"worse_share", a.s.bar.worse_share}, {"worst_ratio", a.s.bar.worst_ratio}}},
@@ -144,7 +157,7 @@ nlohmann::ordered_json result_json(const TuneArgs& a, const ao::TuneResult& r) {
       scenes.push_back({{"scene", h.scene},
                         {"default", h.default_error},
                         {"tuned", h.tuned_error},
-                        {"ratio", h.tuned_error / h.default_error}});
+                        {"ratio", ao::error_ratio(h.tuned_error, h.default_error)}});
     }
     folds.push_back({{"held_out", f.held_out},
                      {"default", f.default_error},
@@ -296,7 +309,7 @@ void add_tune_command(CLI::App& app, int& rc) {
   cmd->add_option("--max-worse-ratio", a->s.bar.worst_ratio,
                   "largest error over the defaults' the preset may have on a held-out pair "
                   "(default 1.05)")
-      ->option_text(">=1")
+      ->option_text("1..100")
       ->check(CLI::Range(1.0, 100.0));
   add_pipeline_option(cmd, a->pipeline);
   guarded(cmd, rc, "tune", [a] { return run_tune(*a); });

@@ -231,6 +231,79 @@ TEST(TuneMetric, MaskedRmseIsTheErrorReportsRmse) {
   }
 }
 
+// A pair's ratio keeps a floor of 1e-3 on both errors, so an exact default (an open plane) gives
+// a large but finite ratio; the objective averages the worst ratio and the mean.
+TEST(TuneChoice, RatioAndObjective) {
+  EXPECT_DOUBLE_EQ(aosuite::ao::error_ratio(0, 0), 1);
+  EXPECT_DOUBLE_EQ(aosuite::ao::error_ratio(0.02, 0.02), 1);
+  EXPECT_DOUBLE_EQ(aosuite::ao::error_ratio(0.002, 0.001), 1.5);
+  EXPECT_DOUBLE_EQ(aosuite::ao::objective({1, 1, 1}), 1);
+  EXPECT_DOUBLE_EQ(aosuite::ao::objective({0.5, 1.5}), 0.5 * (1.5 + 1.0));
+  EXPECT_DOUBLE_EQ(aosuite::ao::objective({}), 1);
+}
+
+// The bar counts whole pairs (29 of 100 is within 0.29, whatever 0.29 x 100 rounds to), a tie
+// with the defaults is not worse, a ratio over the limit or not a number is out; the mean is
+// geometric and its standard error the log ratios' sample deviation over sqrt(n).
+TEST(TuneChoice, SummariseCountsWholePairsAndTheWorst) {
+  using aosuite::ao::ShrinkTrial;
+  ShrinkTrial t;
+  const std::vector<double> ratios = {0.9, 1.02, 0.8, 1.0};
+  aosuite::ao::summarise(t, ratios, {0.25, 1.05});
+  EXPECT_EQ(t.pairs, 4);
+  EXPECT_EQ(t.worse, 1);
+  EXPECT_DOUBLE_EQ(t.worst_ratio, 1.02);
+  double mean = 0, squares = 0;
+  for (double r : ratios) mean += std::log(r) / 4;
+  for (double r : ratios) squares += (std::log(r) - mean) * (std::log(r) - mean);
+  EXPECT_NEAR(t.mean_ratio, std::exp(mean), 1e-15);
+  EXPECT_NEAR(t.log_se, std::sqrt(squares / 3) / 2, 1e-15);
+  EXPECT_TRUE(t.within_bar);
+  aosuite::ao::summarise(t, ratios, {0.2, 1.05});  // 0.8 of a pair: none may be worse
+  EXPECT_FALSE(t.within_bar);
+  aosuite::ao::summarise(t, ratios, {1, 1.01});  // 1.02 is over the ratio limit
+  EXPECT_FALSE(t.within_bar);
+  std::vector<double> hundred(100, 0.9);
+  std::fill_n(hundred.begin(), 29, 1.01);
+  aosuite::ao::summarise(t, hundred, {0.29, 1.05});
+  EXPECT_EQ(t.worse, 29);
+  EXPECT_TRUE(t.within_bar);
+  aosuite::ao::summarise(t, {0.9, std::nan("")}, {1, 100});
+  EXPECT_EQ(t.worse, 1);
+  EXPECT_FALSE(t.within_bar);
+}
+
+// The share: the smallest eligible one (within the bar and the budget) whose mean log ratio is
+// within one standard error of the best eligible mean; the defaults when the best gain is
+// within its own standard error.
+TEST(TuneChoice, TheSmallestShareWithinOneStandardErrorOfTheBest) {
+  using aosuite::ao::ShrinkTrial;
+  const auto trial = [](double shrink, double mean, double se, bool bar = true,
+                        bool budget = true) {
+    ShrinkTrial t;
+    t.shrink = shrink, t.mean_ratio = mean, t.log_se = se, t.within_bar = bar;
+    t.within_budget = budget;
+    return t;
+  };
+  const ShrinkTrial zero = trial(0, 1, 0);
+  EXPECT_EQ(aosuite::ao::choose_shrink({}), 1);
+  // A gain of 1 % with a standard error of 2 %: no evidence.
+  EXPECT_EQ(aosuite::ao::choose_shrink({zero, trial(0.5, 0.99, 0.02)}), 0);
+  // The best mean (share 1) is over the bar: the best eligible is 0.5.
+  EXPECT_EQ(aosuite::ao::choose_shrink({zero, trial(0.5, 0.9, 0.01), trial(1, 0.8, 0.01, false)}),
+            0.5);
+  // Share 0.5 is within one standard error of the best (share 1), share 0.25 is not.
+  const std::vector<ShrinkTrial> graded = {zero, trial(0.25, 0.92, 0.01), trial(0.5, 0.91, 0.02),
+                                           trial(1, 0.9, 0.02)};
+  EXPECT_EQ(aosuite::ao::choose_shrink(graded), 0.5);
+  // Over the depth-tap budget, 0.5 is passed over for the next within reach.
+  std::vector<ShrinkTrial> costly = graded;
+  costly[2].within_budget = false;
+  EXPECT_EQ(aosuite::ao::choose_shrink(costly), 1);
+  // Nothing better than the defaults: the defaults.
+  EXPECT_EQ(aosuite::ao::choose_shrink({zero, trial(0.5, 1.01, 0.001)}), 0);
+}
+
 class TuneRun : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -411,6 +484,29 @@ TEST_F(TuneRun, APresetMustBeatTheDefaultsOnHeldOutPairsWithinTheBarOrIsTheDefau
         std::ranges::find(r.shrink_trials, r.shrink, &aosuite::ao::ShrinkTrial::shrink);
     ASSERT_NE(chosen, r.shrink_trials.end());
     EXPECT_TRUE(chosen->within_bar);
+    // Each trial's figures are its held-out pairs': with one scene a fold, a pair's error is the
+    // fold's error at that radius (measured on the training scene instead, they would differ).
+    for (const aosuite::ao::ShrinkTrial& t : r.shrink_trials) {
+      std::vector<double> ratios;
+      for (std::size_t f = 0; f < t.fold_error.size(); ++f) {
+        std::vector<double> fold;
+        for (std::size_t k = 0; k < s_.radii.size(); ++k)
+          fold.push_back(aosuite::ao::error_ratio(t.fold_error[f][k], zero.fold_error[f][k]));
+        aosuite::ao::ShrinkTrial one;
+        aosuite::ao::summarise(one, fold, s_.bar);
+        EXPECT_NEAR(t.fold_ratio.at(f), one.mean_ratio, 1e-12) << t.shrink;
+        ratios.insert(ratios.end(), fold.begin(), fold.end());
+      }
+      aosuite::ao::ShrinkTrial all;
+      aosuite::ao::summarise(all, ratios, s_.bar);
+      EXPECT_EQ(t.worse, all.worse) << t.shrink;
+      EXPECT_NEAR(t.worst_ratio, all.worst_ratio, 1e-12) << t.shrink;
+      EXPECT_NEAR(t.mean_ratio, all.mean_ratio, 1e-12) << t.shrink;
+      EXPECT_NEAR(t.log_se, all.log_se, 1e-12) << t.shrink;
+    }
+    if (r.shrink == 0) {
+      EXPECT_EQ(space.key(r.searched), space.key(r.defaults)) << "no all-scenes search";
+    }
     const aosuite::ao::ShrinkTrial* best = &zero;
     for (const aosuite::ao::ShrinkTrial& t : r.shrink_trials) {
       EXPECT_EQ(t.within_bar,
