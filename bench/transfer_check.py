@@ -3,7 +3,7 @@
 scene view and radius: AO RMSE against the ray-traced reference (`aosuite error`) with the
 technique's defaults and with `--preset tuned`, and their ratio (tuned / defaults; < 1 is better).
 
-  python3 bench/transfer_check.py --scene suites/scenes/sponza.toml --scene suites/scenes/sibenik.toml
+  python3 bench/transfer_check.py --scene suites/scenes/snowden.toml
       [--technique gtao ...] [--radius 0.25 --radius 0.5 --radius 1] [--width 320 --height 180]
       [--rays 256] [--json out.json]
 

@@ -3,7 +3,7 @@
 # searched against the ray-traced reference at r = 0.25, 0.5 and 1 on the built-in
 # scenes, on the meshes scripts/fetch_assets.sh fetches (suites/scenes/*.toml, the dragon) and on
 # the architecture scenes (Sponza, Sibenik: scripts/import_assets.sh),
-# within GTAO High's 18 depth taps, and validated by leaving one family of scenes out at a time. The results (JSON,
+# each candidate within GTAO High's 18 depth taps (a preset left at its defaults keeps their cost), and validated by leaving one family of scenes out at a time. The results (JSON,
 # and the printed tables) go to ${OUT:-reports/tune}; docs/results.md quotes them.
 # PMI has no depth taps: it is searched for the map from its visibility to AO, on the scenes with
 # an object (plane, ground alone, is left out).

@@ -32,8 +32,8 @@ def bar_table(runs):
           f"than {100 * (bar['worst_ratio'] - 1):g} %.")
     print()
     print("| technique | share chosen | held-out pairs | worse | worst ratio | geometric mean "
-          "ratio | per family (geometric mean) | preset | depth taps | AO ms at 320×180 |")
-    print("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |")
+          "ratio | per family (geometric mean) | preset | depth taps |")
+    print("| --- | --- | --- | --- | --- | --- | --- | --- | --- |")
     for r in runs:
         pick, _ = chosen(r)
         families = ", ".join(f"{f['held_out']} {x:.3f}"
@@ -41,8 +41,7 @@ def bar_table(runs):
         print(f"| {r['technique']} | {pick['shrink']:g} | {pick['pairs']} | {pick['worse']} | "
               f"{pick['worst_ratio']:.3f} | {pick['mean_ratio']:.3f} | {families} | "
               f"{'the defaults' if r['preset'] == r['default'] else 'moved'} | "
-              f"{r['taps']['default']} → {r['taps']['tuned']} | "
-              f"{r['ao_ms']['default']:.1f} → {r['ao_ms']['tuned']:.1f} |")
+              f"{r['taps']['default']} → {r['taps']['tuned']} |")
     print()
 
 
