@@ -89,12 +89,9 @@ HeldOutRatios held_out_ratios(const std::vector<ao::Fold>& folds) {
 
 // Why the preset is what it is, for its header and the terminal: the shrinks tried on the
 // folds' held-out (scene, radius) pairs and the one chosen. Empty without folds.
-std::string space_key(const TuneArgs& a, const rd::AoParams& p) {
-  return ao::TuneSpace(a.s.technique).key(p);
-}
-
 std::string shrink_text(const TuneArgs& a, const ao::TuneResult& r) {
   if (r.shrink_trials.empty()) return {};
+  const ao::TuneSpace space(a.s.technique);
   std::string tried;
   for (const ao::ShrinkTrial& t : r.shrink_trials)
     tried += fmt::format("{}{:g}: mean {:.3f} (log ±{:.3f}), worst {:.3f}, {} of {} worse{}",
@@ -106,7 +103,7 @@ std::string shrink_text(const TuneArgs& a, const ao::TuneResult& r) {
   const std::string chosen =
       r.shrink == 0
           ? "the defaults kept: no share within the bar beat them by more than its standard error"
-      : space_key(a, r.searched) == space_key(a, r.defaults)
+      : space.key(r.searched) == space.key(r.defaults)
           ? fmt::format(
                 "share {:g}, but the search on every scene found nothing better than "
                 "the defaults: the preset is the defaults",
