@@ -13,7 +13,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 out=${OUT:-reports/tune}
 mkdir -p "$out"
-scenes=plane,corner,spheres,village,workshop,suites/scenes/bunny.toml,suites/scenes/teapot.toml,dragon,suites/scenes/sponza.toml,suites/scenes/sibenik.toml
+scenes=plane,corner,spheres,village,workshop,suites/scenes/bunny.toml,suites/scenes/teapot.toml,suites/scenes/effector.toml,suites/scenes/ship.toml,dragon,suites/scenes/sponza.toml,suites/scenes/sibenik.toml
 techniques=("$@")
 [ ${#techniques[@]} -gt 0 ] || techniques=(alchemy sao mssao ue4 gtao bitmask pmi)
 for t in "${techniques[@]}"; do

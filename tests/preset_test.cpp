@@ -12,12 +12,14 @@
 
 #include "png_fixture.hpp"
 #include "process.hpp"
+#include "tuned_presets.hpp"
 
 namespace aosuite {
 namespace {
 
 namespace fs = std::filesystem;
 using test::read_text;
+using test::tuned_params;
 
 class Presets : public ::testing::Test {
  protected:
@@ -122,23 +124,6 @@ TEST_F(Presets, TuneWritesAPresetThatRenderTakes) {
   EXPECT_NE(r.err.find("scene 'plane' has no object for pmi"), std::string::npos) << r.err;
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
   EXPECT_FALSE(fs::exists(dir_ / "t" / "pmi.toml"));
-}
-
-// The [params] of ao/presets/tuned-TECHNIQUE.toml, each value as JSON (a TOML number, list of
-// numbers or quoted word reads the same).
-std::map<std::string, nlohmann::json> tuned_params(const std::string& technique) {
-  std::istringstream file(read_text(fs::path(AOSUITE_SOURCE_DIR) / "ao" / "presets" /
-                                    ("tuned-" + technique + ".toml")));
-  std::map<std::string, nlohmann::json> out;
-  bool in_params = false;
-  for (std::string line; std::getline(file, line);) {
-    if (line == "[params]") in_params = true;
-    const std::size_t eq = line.find(" = ");
-    if (in_params && eq != std::string::npos)
-      out[line.substr(0, eq)] = nlohmann::json::parse(line.substr(eq + 3));
-  }
-  if (out.empty()) throw std::runtime_error("tuned-" + technique + ": no [params]");
-  return out;
 }
 
 // With no --scenes, tune takes the built-in scenes and the scene files of ./suites/scenes that

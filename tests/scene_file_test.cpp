@@ -444,13 +444,33 @@ TEST(FetchedAssets, FetchedMeshesHaveTheirDeclaredTriangles) {
     std::uint64_t faces;
   };
   for (const Asset& a :
-       {Asset{"bunny.ply", 3674}, Asset{"teapot.ply", 992}, Asset{"snowden.ply", 109259}}) {
+       {Asset{"bunny.ply", 3674}, Asset{"teapot.ply", 992}, Asset{"snowden.ply", 109259},
+        Asset{"effector.ply", 786}, Asset{"ship.ply", 828}}) {
     const fs::path file = fetched_asset(a.name);
     if (!fs::exists(file)) GTEST_SKIP() << file << " not fetched (scripts/fetch_assets.sh)";
     EXPECT_EQ(declared_faces(file), a.faces) << a.name;
     const Mesh m = load_mesh(file);
     EXPECT_EQ(m.triangles.size(), a.faces) << a.name;
     expect_unit_normals(m);
+  }
+}
+
+// The CAD parts come from STL files, whose triangles share no vertices. fetch_assets.sh writes
+// each triangle's own normal at its corners, so the reader's weld (which joins vertices equal in
+// position and normal) keeps the creases: every corner's normal is its triangle's. Without the
+// written normals, the reader would weld by position and smooth a 90-degree edge into a bevel.
+TEST(FetchedAssets, TheCadPartsKeepTheirCreases) {
+  for (const char* name : {"effector.ply", "ship.ply"}) {
+    const fs::path file = fetched_asset(name);
+    if (!fs::exists(file)) GTEST_SKIP() << file << " not fetched (scripts/fetch_assets.sh)";
+    const Mesh m = load_mesh(file);
+    for (const glm::uvec3& t : m.triangles) {
+      const glm::vec3 face = glm::normalize(
+          glm::cross(m.positions[t.y] - m.positions[t.x], m.positions[t.z] - m.positions[t.x]));
+      for (const unsigned corner : {t.x, t.y, t.z}) {
+        ASSERT_GT(glm::dot(m.normals[corner], face), 1 - 1e-4f) << name;
+      }
+    }
   }
 }
 
