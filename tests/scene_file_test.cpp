@@ -150,6 +150,22 @@ TEST_F(MeshFiles, PlyAsciiAndBinaryOfBothByteOrdersAgree) {
   }
 }
 
+// From bytes already read (a pinned scene file's, hashed): the path only names the file and its
+// format, and is never opened, so what was hashed is what is parsed.
+TEST_F(MeshFiles, BytesAlreadyReadAreParsedWithoutOpeningThePath) {
+  const std::string text = tetra_ascii_ply();
+  const Mesh m =
+      load_mesh(dir_ / "absent.ply", std::vector<unsigned char>(text.begin(), text.end()));
+  EXPECT_EQ(m.triangles.size(), 4u);
+  EXPECT_EQ(m.positions, load_mesh(file("t.ply", text)).positions);
+  const std::string e = error_of([&] { load_mesh(dir_ / "t.stl", {}); });
+  EXPECT_NE(e.find("t.stl: unsupported mesh format"), std::string::npos) << e;
+  const std::string truncated = error_of([&] {
+    load_mesh(dir_ / "absent.ply", std::vector<unsigned char>(text.begin(), text.end() - 20));
+  });
+  EXPECT_NE(truncated.find("absent.ply"), std::string::npos) << truncated;
+}
+
 TEST_F(MeshFiles, ObjQuadIsTriangulatedWeldedAndGetsNormals) {
   const Mesh m = load_mesh(file("q.obj",
                                 "# a unit square facing +z\nv 0 0 0\nv 1 0 0\nv 1 1 0\n"

@@ -75,19 +75,17 @@ void drop_materials(std::vector<unsigned char>& obj) {
   }
 }
 
-}  // namespace
-
-Mesh load_mesh(const std::filesystem::path& path) {
-  const std::string ext = lower_extension(path);
+// The file's format from its extension, refused before any byte is read if it is none of three.
+std::string mesh_format(const std::filesystem::path& path) {
+  std::string ext = lower_extension(path);
   if (ext != ".ply" && ext != ".obj" && ext != ".off") {
     fail(path, "unsupported mesh format (expected .ply, .obj or .off)");
   }
-  std::vector<unsigned char> bytes;
-  try {
-    bytes = read_file(path);
-  } catch (const FileError& e) {
-    throw FileError(printable(e.what()));  // names the path
-  }
+  return ext;
+}
+
+Mesh parse_mesh(const std::filesystem::path& path, const std::string& ext,
+                std::vector<unsigned char> bytes) {
   if (ext == ".ply") check_ply(path.string(), bytes);
   if (ext == ".off") check_off(path.string(), bytes);
   if (ext == ".obj") {
@@ -125,6 +123,24 @@ Mesh load_mesh(const std::filesystem::path& path) {
     append_mesh(merged, triangles_of(*scene->mMeshes[i]));
   if (merged.triangles.empty()) fail(path, "no triangles");
   return merged;
+}
+
+}  // namespace
+
+Mesh load_mesh(const std::filesystem::path& path) {
+  const std::string ext = mesh_format(path);
+  std::vector<unsigned char> bytes;
+  try {
+    bytes = read_file(path);
+  } catch (const FileError& e) {
+    throw FileError(printable(e.what()));  // names the path
+  }
+  return parse_mesh(path, ext, std::move(bytes));
+}
+
+Mesh load_mesh(const std::filesystem::path& path, std::vector<unsigned char> bytes) {
+  const std::string ext = mesh_format(path);
+  return parse_mesh(path, ext, std::move(bytes));
 }
 
 }  // namespace aosuite::renderer

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <filesystem>
+#include <vector>
 
 #include "renderer/scene/mesh.hpp"
 
@@ -13,5 +14,8 @@ namespace aosuite::renderer {
 // "<file>: <reason>" for an unreadable, truncated or malformed file, a non-finite position,
 // an index out of range or a file without triangles.
 Mesh load_mesh(const std::filesystem::path& path);
+// The same from the file's bytes, read by the caller: a scene file that pins the mesh's SHA-256
+// parses the very bytes it hashed. `path` names the file in errors and gives its format.
+Mesh load_mesh(const std::filesystem::path& path, std::vector<unsigned char> bytes);
 
 }  // namespace aosuite::renderer

@@ -58,23 +58,24 @@ Mesh mesh_geometry(const SceneReader& r, const toml::table& t) {
   if (const toml::node* n = t.get("file")) {
     const fs::path file = r.file().parent_path() / r.string(*n, "file");
     // A malformed pin is refused before the file is read, and a missing file keeps load_mesh's
-    // own error, pinned or not. load_mesh reads the file again: a pin guards against another
-    // copy of the mesh than the one the scene was made with, not against one changed mid-load.
+    // own error, pinned or not. A pinned file is read once: the bytes hashed are those parsed.
     const std::string expected = pin ? sha256_pin(r, *pin) : std::string();
-    if (std::error_code ec; pin && fs::exists(file, ec)) {
-      std::string actual;
+    std::error_code ec;
+    const bool pinned = pin && fs::exists(file, ec);
+    std::vector<unsigned char> bytes;
+    if (pinned) {
       try {
-        actual = sha256_hex(read_file(file));
+        bytes = read_file(file);
       } catch (const FileError& e) {
         r.fail(n->source(), e.what());
       }
-      if (actual != expected) {
+      if (const std::string actual = sha256_hex(bytes); actual != expected) {
         r.fail(pin->source(), fmt::format("{}: SHA-256 is {}, the scene file pins {}",
                                           file.string(), actual, expected));
       }
     }
     try {
-      return load_mesh(file);
+      return pinned ? load_mesh(file, std::move(bytes)) : load_mesh(file);
     } catch (const std::exception& e) {
       r.fail(n->source(), e.what());
     }
