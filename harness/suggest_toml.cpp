@@ -2,7 +2,11 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <map>
 #include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
 
 #include "harness/escape.hpp"
 
@@ -58,11 +62,19 @@ std::string kept_keys(const Suite& suite, const Tolerance& t) {
   return out;
 }
 
-std::string case_toml(const Suite& suite, const Suggestion& s) {
-  std::string out = fmt::format("\n# {}, from {} runs: {}\n", s.id, s.runs.size(), margin_text(s));
-  for (const std::string& n : s.margin_notes) out += "#   " + n + "\n";
-  out += "[case.tolerance]\n";
-  const Tolerance &now = s.current, &next = s.proposed;
+// Why a case's limits are what they are: its runs and margin, then the margin's notes.
+std::string why_toml(const Suggestion& s, std::string_view indent) {
+  std::string out =
+      fmt::format("#{} {}, from {} runs: {}\n", indent, s.id, s.runs.size(), margin_text(s));
+  for (const std::string& n : s.margin_notes) out += fmt::format("#{}   {}\n", indent, n);
+  return out;
+}
+
+// The [case.tolerance] table: `next`'s limits, each beside `now`'s where they differ, then the
+// keys not suggested as the case has them, then the limits kept and why.
+std::string tolerance_toml(const Suite& suite, const Tolerance& now, const Tolerance& next,
+                           const std::vector<std::string>& kept) {
+  std::string out = "[case.tolerance]\n";
   if (next.resemble) {
     out += fmt::format("mode = \"{}\"\n", resemble::mode_name(next.mode));
     out += line("max_mismatch_percent", fmt::format("{}", next.max_mismatch_percent),
@@ -94,8 +106,33 @@ std::string case_toml(const Suite& suite, const Suggestion& s) {
                 region_toml(now.regions[i]));
   }
   out += kept_keys(suite, now);
-  for (const std::string& k : s.kept) out += "# " + k + "\n";
+  for (const std::string& k : kept) out += "# " + k + "\n";
   return out;
+}
+
+// One [[case]]'s suggested ids (in suite order), one table: a [[case]] has one [case.tolerance]
+// for every id it expands into, so several ids get the loosest of their suggestions (each max
+// limit the largest, each min limit the smallest), which passes every run of each.
+std::string table_toml(const Suite& suite, const std::vector<const Suggestion*>& ids) {
+  if (ids.size() == 1) {
+    const Suggestion& s = *ids.front();
+    std::string out = "\n";  // appended, not `"\n" + ...`: GCC 12 misreads that (-Wrestrict)
+    out += why_toml(s, "");
+    return out + tolerance_toml(suite, s.current, s.proposed, s.kept);
+  }
+  std::vector<Suggestion> group;
+  std::vector<std::string> names, kept;
+  for (const Suggestion* s : ids) {
+    group.push_back(*s);
+    names.push_back(s->id);
+    for (const std::string& k : s->kept)
+      if (std::ranges::find(kept, k) == kept.end()) kept.push_back(k);
+  }
+  std::string out = fmt::format(
+      "\n# {}: one [[case]], so one [case.tolerance], the loosest of their suggestions:\n",
+      fmt::join(names, ", "));
+  for (const Suggestion* s : ids) out += why_toml(*s, "  ");
+  return out + tolerance_toml(suite, ids.front()->current, *loosest(group), kept);
 }
 
 }  // namespace
@@ -128,21 +165,26 @@ std::string suggestions_toml(const Suite& suite, const std::vector<Suggestion>& 
       "# delta, means and max_ gate values, the least min_ ones) widened by a margin, then\n"
       "# rounded outward to 4 significant digits. {}\n"
       "# Each [case.tolerance] is complete: after review, paste it over the one of the [[case]]\n"
-      "# that makes the case named above it (or below that [[case]]'s keys, if it has none).\n"
+      "# that makes the cases named above it (or below that [[case]]'s keys, if it has none).\n"
       "# aosuite never reads this file: the suite and its goldens are unchanged.\n",
       options.margin_percent
           ? fmt::format("The margin is {} % (--margin).", *options.margin_percent)
           : "The margin is chosen per case: each run was\n"
             "# held back in turn, and the farthest one fell from the limit the other runs set,\n"
             "# relative to it, widens every limit that varied between runs (none that never did).");
+  // The suggested ids by the [[case]] that made them, in the suite's order.
+  std::map<std::string, int> table_of;
+  for (const Case& k : suite.cases) table_of[k.id] = k.table;
+  std::map<int, std::vector<const Suggestion*>> tables;
   std::string skipped;
   for (const Suggestion& s : suggestions) {
-    if (s.reason.empty()) {
-      out += case_toml(suite, s);
-    } else {
+    if (!s.reason.empty()) {
       skipped += "#   " + s.id + ": " + s.reason + "\n";
+      continue;
     }
+    tables[table_of.at(s.id)].push_back(&s);
   }
+  for (const auto& [table, ids] : tables) out += table_toml(suite, ids);
   if (!skipped.empty()) out += "\n# Not suggested:\n" + skipped;
   return out;
 }

@@ -163,6 +163,7 @@ Suite folder_suite(const fs::path& actual, const fs::path& expected, const Toler
     k.images = {"image"};
     k.tolerance = tolerance;
     k.source = std::move(src);
+    k.table = static_cast<int>(suite.cases.size());
     suite.cases.push_back(std::move(k));
   }
   return suite;

@@ -74,6 +74,9 @@ struct Case {
   int width = 0, height = 0;
   std::vector<std::string> images;  // the gated images (image cases: every image)
   Tolerance tolerance;
+  // Which [[case]] of the suite file made it (0 first): the ids one [[case]] expands into share
+  // its [case.tolerance], so `tolerances suggest` writes them one table. Folder mode: its index.
+  int table = 0;
 };
 
 // A file folder mode left out, and why (a link, not a regular file, not a PNG or EXR).

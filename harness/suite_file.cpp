@@ -493,7 +493,7 @@ Suite load_suite(const fs::path& file) {
 
   std::set<std::string> ids;
   std::map<std::string, std::shared_ptr<const void>> memo;
-  for (const toml::node& node : *cases) {
+  for (int index = 0; const toml::node& node : *cases) {
     const toml::table& t = r.table(node, "case");
     std::vector<Case> made;
     if (t.get("command") || t.get("files")) {
@@ -519,8 +519,10 @@ Suite load_suite(const fs::path& file) {
     for (Case& k : made) {
       if (!valid_name(k.id)) r.fail(t.source(), bad_name("case id", k.id));
       if (!ids.insert(k.id).second) r.fail(t.source(), "duplicate case '" + k.id + "'");
+      k.table = index;
       suite.cases.push_back(std::move(k));
     }
+    ++index;
   }
   return suite;
 }

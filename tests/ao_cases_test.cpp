@@ -88,6 +88,8 @@ tolerance = { max_channel_delta = 9 }
   EXPECT_EQ(v.tolerance.max_mismatch_percent, 1.5);
   EXPECT_EQ(v.tolerance.max_channel_delta, 9);
   EXPECT_EQ(v.images, std::vector<std::string>{"with_ao"});
+  // Each case knows its [[case]]: the corner's four share the first table's tolerance.
+  for (std::size_t i = 0; i < s.cases.size(); ++i) EXPECT_EQ(s.cases[i].table, i < 4 ? 0 : 1);
 }
 
 TEST_F(SceneSuite, MalformedSuitesNameFileLineAndReason) {

@@ -13,6 +13,7 @@
 #include <random>
 
 #include "compare/opencv.hpp"
+#include "harness/suggest_toml.hpp"
 #include "harness/tolerance_suggest.hpp"
 #include "png_fixture.hpp"
 #include "process.hpp"
@@ -105,6 +106,47 @@ TEST(RoundOutward, FourSignificantDigitsNeverInsideTheValue) {
 // With --margin 0 the suggestion is the largest of what both runs measured, in the suite's
 // keys; put into the suite it passes both runs' images, and one step tighter it fails the run
 // that set it.
+// A [[case]] that expands into several ids (a scene case's views and techniques) has one
+// [case.tolerance] for all of them: the suggestion file gives it one table, the loosest of its
+// ids' suggestions, naming each id and its margin; another [[case]]'s id keeps its own table.
+TEST(SuggestionsToml, TheIdsOfOneCaseTableGetOneToleranceTheLoosest) {
+  harness::Suite suite;
+  suite.name = "s", suite.file = "s/t.toml";
+  for (const auto& [id, table] : {std::pair{"a-gtao", 0}, {"a-sao", 0}, {"b", 1}}) {
+    harness::Case k;
+    k.id = id, k.table = table;
+    suite.cases.push_back(k);
+  }
+  const auto suggestion = [](const char* id, double mismatch, int delta) {
+    harness::Suggestion s;
+    s.id = id, s.runs = {"r1", "r2"}, s.margin_why = "--margin";
+    s.current.max_mismatch_percent = 50, s.current.max_channel_delta = 64;
+    s.proposed = s.current;
+    s.proposed.max_mismatch_percent = mismatch, s.proposed.max_channel_delta = delta;
+    return s;
+  };
+  const std::string toml = harness::suggestions_toml(
+      suite, {suggestion("a-gtao", 1.5, 9), suggestion("a-sao", 2.5, 4), suggestion("b", 0.5, 3)},
+      {"r1", "r2"}, {});
+  std::size_t tables = 0;
+  for (std::size_t at = 0; (at = toml.find("[case.tolerance]\n", at)) != std::string::npos; ++at)
+    ++tables;
+  EXPECT_EQ(tables, 2u) << toml;
+  EXPECT_NE(toml.find("\n# a-gtao, a-sao: one [[case]], so one [case.tolerance], the loosest of "
+                      "their suggestions:\n"
+                      "#   a-gtao, from 2 runs: +0 % on each limit, --margin\n"
+                      "#   a-sao, from 2 runs: +0 % on each limit, --margin\n"
+                      "[case.tolerance]\nmode = \"less\"\n"
+                      "max_mismatch_percent = 2.5  # now 50\nmax_channel_delta = 9  # now 64\n"),
+            std::string::npos)
+      << toml;
+  EXPECT_NE(toml.find("\n# b, from 2 runs: +0 % on each limit, --margin\n[case.tolerance]\n"
+                      "mode = \"less\"\nmax_mismatch_percent = 0.5  # now 50\n"
+                      "max_channel_delta = 3  # now 64\n"),
+            std::string::npos)
+      << toml;
+}
+
 TEST_F(TolerancesSuggest, TheTightestLimitsPassingEveryRun) {
   two_runs();
   const test::Outcome r =
