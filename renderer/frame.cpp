@@ -1,8 +1,13 @@
 #include "renderer/frame.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
+#include <thread>
+
+#include "renderer/gl/gl_context.hpp"
 
 namespace aosuite::renderer {
 Camera make_camera(const View& v, int width, int height) {
@@ -89,9 +94,26 @@ Program make_pixel_program(const char* file) {
   return make_program({file}, "#define PIXEL_GROUP " + std::to_string(kPixelGroup) + "\n");
 }
 
+int dispatch_shares() {
+  const auto* device = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+  if (!device || !software_renderer(device)) return 1;
+  long threads = std::thread::hardware_concurrency();
+  if (const char* env = std::getenv("LP_NUM_THREADS"); env && *env) {
+    threads = std::strtol(env, nullptr, 10);  // as Mesa reads it
+  }
+  return static_cast<int>(std::clamp(threads, 1L, 256L));
+}
+
+void dispatch_rows(GLuint program, GLuint groups_x, GLuint groups_y) {
+  const auto shares = static_cast<GLuint>(dispatch_shares());
+  glProgramUniform1i(program, glGetUniformLocation(program, "u_dispatch_shares"),
+                     static_cast<GLint>(shares));
+  glUseProgram(program);
+  glDispatchCompute(groups_x, (groups_y + shares - 1) / shares * shares, 1);
+}
+
 void dispatch_pixels(GLuint program, std::initializer_list<std::pair<GLuint, GLenum>> images,
                      int width, int height) {
-  glUseProgram(program);
   GLuint unit = 0;
   for (const auto& [tex, format] : images) {
     glBindImageTexture(unit++, tex, 0, GL_FALSE, 0, GL_WRITE_ONLY, format);
@@ -99,7 +121,7 @@ void dispatch_pixels(GLuint program, std::initializer_list<std::pair<GLuint, GLe
   const auto groups = [](int n) {
     return static_cast<GLuint>((n + kPixelGroup - 1) / kPixelGroup);
   };
-  glDispatchCompute(groups(width), groups(height), 1);
+  dispatch_rows(program, groups(width), groups(height));
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT |
                   GL_FRAMEBUFFER_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
 }

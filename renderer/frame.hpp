@@ -62,9 +62,22 @@ inline constexpr int kPixelGroup = 8;
 // Links compute shader `file` with PIXEL_GROUP defined as kPixelGroup (its local size).
 Program make_pixel_program(const char* file);
 
-// Binds `images` (texture, format) to image units 0..n-1 for writing, makes `program` current
-// and dispatches workgroups over width x height pixels; then orders those writes before what
-// reads them next (texel fetches, framebuffer use, read-back), as a draw's would be.
+// How many contiguous runs the device splits a dispatch's workgroups into, one per thread:
+// Mesa's software rasterisers give each compute thread one (LP_NUM_THREADS of them, by default
+// one per CPU); a GPU hands workgroups to its units as they free up, so 1 there. A wrong count
+// costs only balance between threads: dispatch_rows's map is one to one for any count.
+int dispatch_shares();
+
+// Makes `program` current and dispatches groups_x x groups_y workgroups whose rows its shader
+// maps through dispatch_order.glsl's image_workgroup(), so that each of the device's shares of
+// the dispatch covers the whole image: the rows rounded up to a multiple of dispatch_shares().
+void dispatch_rows(GLuint program, GLuint groups_x, GLuint groups_y);
+
+// Binds `images` (texture, format) to image units 0..n-1 for writing and dispatches
+// (dispatch_rows) workgroups over width x height pixels; then orders those writes before what
+// reads them next (texel fetches, framebuffer use, read-back), as a draw's would be. A shader
+// whose pixels cost the same keeps gl_GlobalInvocationID's order (the blend: interleaved, it
+// measured slower on llvmpipe) and skips the spare rows as it skips a partial workgroup's.
 void dispatch_pixels(GLuint program, std::initializer_list<std::pair<GLuint, GLenum>> images,
                      int width, int height);
 

@@ -4,10 +4,14 @@
 // the pixel comes from, so on one device they compute the same floats in the same order.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstdlib>
 #include <cstring>
 #include <string>
+#include <thread>
 #include <vector>
 
+#include "renderer/frame.hpp"
 #include "renderer/renderer.hpp"
 #include "renderer/scene/scene.hpp"
 
@@ -91,6 +95,37 @@ TEST(ComputePipeline, SameImagesOneOverFullHd) {
     EXPECT_EQ(differing_bytes(fragment.ao, compute.ao), 0) << technique_name(t) << ": float AO";
     EXPECT_EQ(differing_bytes(fragment.with_ao, compute.with_ao), 0)
         << technique_name(t) << ": with AO";
+  }
+}
+
+// dispatch_rows interleaves the rows of workgroups over the device's shares of a dispatch, one
+// per llvmpipe thread (ctest runs this test once more with LP_NUM_THREADS=3). Whatever their
+// count, every pixel must be shaded once: at sizes whose rows of workgroups (1, 1 and 23) are
+// no multiple of 2 or 3, each technique's compute AO and images equal the fragment ones. A render
+// at another size comes between, so the compute pipeline writes into fresh images, where a pixel
+// it skipped would stay 0 and differ.
+TEST(ComputePipeline, EveryPixelIsWrittenWhateverTheShares) {
+  Renderer& renderer = shared_renderer();
+  const char* threads = std::getenv("LP_NUM_THREADS");
+  const int expected = threads && *threads ? std::atoi(threads)
+                                           : static_cast<int>(std::thread::hardware_concurrency());
+  EXPECT_EQ(dispatch_shares(), std::max(expected, 1)) << "llvmpipe's compute threads";
+  const Scene village = builtin_scene("village");
+  for (const TechniqueInfo* t : compute_techniques()) {
+    for (const auto& [w, h] : {std::pair{1, 1}, std::pair{7, 5}, std::pair{321, 181}}) {
+      RenderSettings s;
+      s.width = w, s.height = h, s.technique = t->id, s.params = default_params(t->id);
+      const Images fragment = render(village, 0, s, Pipeline::kFragment);
+      RenderSettings other = s;
+      other.width = w + 1;
+      renderer.render(village, village.views[0], other);
+      const Images compute = render(village, 0, s, Pipeline::kCompute);
+      const std::string what = std::string(t->name) + " " + std::to_string(w) + "x" +
+                               std::to_string(h) + ", " + std::to_string(dispatch_shares()) +
+                               " shares";
+      EXPECT_EQ(differing_bytes(fragment.ao, compute.ao), 0) << what << ": float AO";
+      EXPECT_EQ(differing_bytes(fragment.with_ao, compute.with_ao), 0) << what << ": with AO";
+    }
   }
 }
 
