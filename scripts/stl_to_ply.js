@@ -7,6 +7,7 @@
 // float32 coordinates, has no normal to speak of and is left out: it covers no pixel and hardly a
 // ray (10 of the effector's 796 triangles). Bad input is one line on stderr, exit 1, and no OUT.
 const fs = require("fs");
+const { writePly } = require("./write_ply.js");
 const [src, out, pkg = src] = process.argv.slice(2);
 const fail = (why) => {
   process.stderr.write(`stl_to_ply: ${why}\n`);
@@ -42,15 +43,6 @@ for (let t = 0; t < corners.length; t += 3) {
   if (len > 1e-4 * Math.max(lu * lv, lu * lw, lv * lw)) faces.push({ corners: [a, c, d], normal: n.map((x) => x / len) });
 }
 if (faces.length === 0) fail(src + ": every triangle is a sliver");
-const head = Buffer.from(["ply", "format binary_little_endian 1.0", "comment converted from " + pkg,
-                          "element vertex " + 3 * faces.length, "property float x", "property float y",
-                          "property float z", "property float nx", "property float ny", "property float nz",
-                          "element face " + faces.length, "property list uchar int vertex_indices", "end_header", ""].join("\n"));
-const body = Buffer.alloc(72 * faces.length + 13 * faces.length);
-let o = 0;
-for (const f of faces) for (const p of f.corners) for (const x of [...p, ...f.normal]) o = body.writeFloatLE(x, o);
-for (let t = 0; t < faces.length; ++t) {
-  o = body.writeUInt8(3, o);
-  for (let k = 0; k < 3; ++k) o = body.writeInt32LE(3 * t + k, o);
-}
-fs.writeFileSync(out, Buffer.concat([head, body]));
+writePly(out, "converted from " + pkg, ["x", "y", "z", "nx", "ny", "nz"],
+         faces.flatMap((f) => f.corners.map((p) => [...p, ...f.normal])),
+         faces.map((f, t) => [3 * t, 3 * t + 1, 3 * t + 2]));

@@ -7,6 +7,7 @@ input is one line, exit 1, no output. Needs node (Debian's nodejs); skips (exit 
 
   python3 tests/stl_to_ply_test.py SOURCE_DIR
 """
+import base64
 import os
 import shutil
 import struct
@@ -104,7 +105,37 @@ def main():
             assert r.returncode == 1, (name, r.returncode, r.stderr)
             assert r.stderr.count("\n") == 1 and path in r.stderr, (name, r.stderr)
             assert not os.path.exists(path + ".ply"), (name, "wrote output")
-    print("stl_to_ply: ASCII and binary agree; bad input refused")
+        # module_to_ply.js, the npm mesh modules' converter, through the same PLY writer: a
+        # module of JSON lines and one of base64 triples (the snowden form) give the same PLY.
+        module = os.path.join(source, "scripts", "module_to_ply.js")
+        positions, cells = [[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], [[0, 1, 2], [0, 3, 1]]
+        b64 = lambda fmt, rows: base64.b64encode(b"".join(struct.pack(fmt, *r) for r in rows)).decode()
+        forms = {
+            "lines.js": "exports.positions=%s;\nexports.cells=%s;\n" % (positions, cells),
+            "packed.js": ';exports.positions = require("./load")(Float32Array, "%s");exports.cells = '
+                         'require("./load")(Uint32Array, "%s");' % (b64("<3f", positions), b64("<3I", cells)),
+        }
+        plys = []
+        for name, text in forms.items():
+            path = os.path.join(tmp, name)
+            open(path, "w").write(text)
+            r = convert(node, module, path, path + ".ply")
+            assert r.returncode == 0, r.stderr
+            data = open(path + ".ply", "rb").read()
+            end = data.index(b"end_header\n") + len(b"end_header\n")
+            assert b"element vertex 4\n" in data[:end] and b"property float nx" not in data[:end], name
+            assert data[end:] == b"".join(struct.pack("<3f", *p) for p in positions) + b"".join(
+                struct.pack("<B3i", 3, *c) for c in cells), (name, "vertices then faces")
+            plys.append(data)
+        assert plys[0] == plys[1], "the two module forms differ"
+        for name, text in {"out_of_range.js": "exports.positions=[[0,0,0]];\nexports.cells=[[0,1,2]];\n",
+                           "code.js": "module.exports = require('fs');\n"}.items():
+            path = os.path.join(tmp, name)
+            open(path, "w").write(text)
+            r = convert(node, module, path, path + ".ply")
+            assert r.returncode == 1 and r.stderr.count("\n") == 1 and path in r.stderr, (name, r.stderr)
+            assert not os.path.exists(path + ".ply"), (name, "wrote output")
+    print("stl_to_ply, module_to_ply: the forms agree; bad input refused")
     return 0
 
 
