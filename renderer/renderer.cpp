@@ -149,12 +149,10 @@ Renderer::~Renderer() = default;
 std::string Renderer::gl_description() const { return state_->context->description(); }
 std::string Renderer::gl_source() const { return state_->context->source(); }
 
-// Fragment until a device is measured faster in compute: on llvmpipe GTAO's 1080p frame took
-// 1.06-1.20x as long in compute (bench/README.md, issue 44), and GPUs have not been measured
-// yet (bench/gpu_check.sh). A device measured faster gets its rule here.
 // The faster pipeline, as measured (bench/README.md, "both pipelines"): on a GPU (an NVIDIA
 // H200) the compute AO passes took 0.07-0.39 ms at 1080p where the drawn ones took 1.9-4.2 ms;
-// on Mesa's llvmpipe compute was 1.06-1.25x slower. The images are the same either way.
+// on Mesa's llvmpipe most compute frames are still 1.07-1.20x as long, its rows of workgroups
+// interleaved or not ("Where the threads wait"). The images are the same either way.
 Pipeline Renderer::default_pipeline() const {
   const auto* device = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
   return device && !software_renderer(device) ? Pipeline::kCompute : Pipeline::kFragment;
