@@ -3,20 +3,9 @@
 // them (SOURCE, such as the npm package, goes into a comment). The module is text, never run: two
 // JSON lines, or one line of two base64 strings (the snowden form). Bad input is one line on
 // stderr, exit 1, and no OUT.
-const fs = require("fs");
-const { writePly } = require("./write_ply.js");
-const [src, out, pkg = src] = process.argv.slice(2);
-const fail = (why) => {
-  process.stderr.write(`module_to_ply: ${why}\n`);
-  process.exit(1);
-};
-if (!src || !out) fail("usage: node scripts/module_to_ply.js IN.js OUT.ply [SOURCE]");
-let text;
-try {
-  text = fs.readFileSync(src, "utf8");
-} catch (e) {
-  fail(`${src}: ${e.code === "ENOENT" ? "no such file" : e.message}`);
-}
+const { writePly, converterInput } = require("./write_ply.js");
+const { src, out, pkg, fail, bytes } = converterInput("module_to_ply", "IN.js OUT.ply [SOURCE]");
+const text = bytes.toString("utf8");
 const mesh = {};
 // ;exports.positions = require("./load")(Float32Array, "<base64>");exports.cells = require(...
 // "./load")(Uint32Array, "<base64>"): little-endian float32 xyz and uint32 ijk, 12 bytes a triple.

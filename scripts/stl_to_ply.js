@@ -6,20 +6,8 @@
 // normals only for a file without them. A sliver, whose smallest angle's sine is under 1e-4 in
 // float32 coordinates, has no normal to speak of and is left out: it covers no pixel and hardly a
 // ray (10 of the effector's 796 triangles). Bad input is one line on stderr, exit 1, and no OUT.
-const fs = require("fs");
-const { writePly } = require("./write_ply.js");
-const [src, out, pkg = src] = process.argv.slice(2);
-const fail = (why) => {
-  process.stderr.write(`stl_to_ply: ${why}\n`);
-  process.exit(1);
-};
-if (!src || !out) fail("usage: node scripts/stl_to_ply.js IN.stl OUT.ply [SOURCE]");
-let b;
-try {
-  b = fs.readFileSync(src);
-} catch (e) {
-  fail(`${src}: ${e.code === "ENOENT" ? "no such file" : e.message}`);
-}
+const { writePly, converterInput } = require("./write_ply.js");
+const { src, out, pkg, fail, bytes: b } = converterInput("stl_to_ply", "IN.stl OUT.ply [SOURCE]");
 const corners = [];
 const ascii = b.subarray(0, 5).toString() === "solid" && /facet/.test(b.subarray(0, 1024).toString());
 if (ascii) {

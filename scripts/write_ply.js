@@ -1,7 +1,8 @@
 // writePly(out, comment, properties, vertices, faces): a binary little-endian PLY of float vertex
 // properties (e.g. ["x", "y", "z", "nx", "ny", "nz"], each vertex an array of that many numbers)
-// and triangles (each three vertex indices), as aosuite's mesh reader takes it. Shared by
-// stl_to_ply.js and module_to_ply.js, the converters scripts/fetch_assets.sh runs.
+// and triangles (each three vertex indices), as aosuite's mesh reader takes it. converterInput:
+// a converter's command line (IN OUT [SOURCE]) and IN's bytes, or one line on stderr and exit 1.
+// Shared by stl_to_ply.js and module_to_ply.js, the converters scripts/fetch_assets.sh runs.
 const fs = require("fs");
 
 function writePly(out, comment, properties, vertices, faces) {
@@ -18,4 +19,18 @@ function writePly(out, comment, properties, vertices, faces) {
   fs.writeFileSync(out, Buffer.concat([head, body]));
 }
 
-module.exports = { writePly };
+function converterInput(name, usage) {
+  const [src, out, pkg = src] = process.argv.slice(2);
+  const fail = (why) => {
+    process.stderr.write(`${name}: ${why}\n`);
+    process.exit(1);
+  };
+  if (!src || !out) fail(`usage: node scripts/${name}.js ${usage}`);
+  try {
+    return { src, out, pkg, fail, bytes: fs.readFileSync(src) };
+  } catch (e) {
+    return fail(`${src}: ${e.code === "ENOENT" ? "no such file" : e.message}`);
+  }
+}
+
+module.exports = { writePly, converterInput };
