@@ -25,7 +25,9 @@ bool only(const TechniqueInfo& t) {
 }
 constexpr double kBig = 1e30;
 
-// The table. Ranges are what the passes handle without NaN or a runaway cost; search ranges
+// The table. Ranges are what the passes handle without NaN or a runaway cost, and keep one
+// pixel's shader loops under llvmpipe's cap of 65,535 iterations per invocation, past which it
+// silently ends them (at most 12,352: 64 slices x 64 steps, bench/README.md); search ranges
 // are where `aosuite tune` looks (ao/tune_space.hpp), wide around every technique's default.
 const ParamSpec kParams[] = {
     {"samples",

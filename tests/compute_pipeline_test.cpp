@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <string>
@@ -12,6 +13,7 @@
 #include <vector>
 
 #include "renderer/frame.hpp"
+#include "renderer/params.hpp"
 #include "renderer/renderer.hpp"
 #include "renderer/scene/scene.hpp"
 
@@ -140,6 +142,34 @@ TEST(ComputePipeline, ObjectSpaceTechniqueRendersInBoth) {
   const Images compute = render(corner, 1, s, Pipeline::kCompute);
   EXPECT_EQ(differing_bytes(fragment.ao, compute.ao), 0);
   EXPECT_EQ(differing_bytes(fragment.with_ao, compute.with_ao), 0);
+}
+
+// llvmpipe silently ends a shader invocation's loops after 65,535 iterations, all its loops
+// counted together (bench/README.md). params.cpp's ranges keep a pixel's loops under that, so
+// each loop count a technique reads (samples, slices, steps) at the top of its range must give
+// all its taps: close to half the count (a loop cut short would leave occlusion out where the
+// street is dark), and the same in both pipelines, whose loops are the same.
+TEST(ComputePipeline, LoopsAtTheTopOfTheirRangesRunToTheEnd) {
+  const Scene village = builtin_scene("village");
+  for (const TechniqueInfo* t : compute_techniques()) {
+    RenderSettings most, half;
+    most.width = half.width = 64, most.height = half.height = 36;
+    most.technique = half.technique = t->id;
+    most.params = half.params = default_params(t->id);
+    for (const char* key : {"samples", "slices", "steps"}) {
+      const ParamSpec& spec = param_spec(key);
+      if (!applies(spec, t->id)) continue;
+      const int top = static_cast<int>(spec.max);
+      set_param(most.params, key, std::to_string(top));
+      set_param(half.params, key, std::to_string(top / 2));
+    }
+    const Images fragment = render(village, 0, most, Pipeline::kFragment);
+    const Images compute = render(village, 0, most, Pipeline::kCompute);
+    const Images fewer = render(village, 0, half, Pipeline::kCompute);
+    EXPECT_EQ(differing_bytes(fragment.ao, compute.ao), 0) << t->name;
+    const double rmse = cv::norm(compute.ao, fewer.ao, cv::NORM_L2) / std::sqrt(compute.ao.total());
+    EXPECT_LT(rmse, 0.01) << t->name << ": the top of the range against half of it";
+  }
 }
 
 TEST(ComputePipeline, EveryScreenSpaceTechniqueHasBoth) {
