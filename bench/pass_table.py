@@ -14,6 +14,7 @@ one that ran and the device, whatever `--gl`/`AOSUITE_GL` pick. On a GPU machine
 """
 import argparse
 import json
+import re
 import subprocess
 import sys
 import tempfile
@@ -25,8 +26,9 @@ def techniques(binary):
     """The registered techniques, as `render --help` lists them ("alchemy|sao|...")."""
     text = subprocess.run([binary, "render", "--help"], check=True, capture_output=True,
                           text=True).stdout
-    line = next(l for l in text.splitlines() if "--technique" in l)
-    return line.split()[-1].split("|")
+    # CLI11 wraps the choices onto the next line when the option's default is long.
+    after = text[text.index("--technique"):]
+    return re.search(r"\b[a-z0-9_]+(?:\|[a-z0-9_]+)+", after).group(0).split("|")
 
 
 def render(args, technique, width, height, out):
