@@ -90,8 +90,17 @@ void bind_textures(GLuint program, std::initializer_list<std::pair<const char*, 
   }
 }
 
-Program make_pixel_program(const char* file) {
-  return make_program({file}, "#define PIXEL_GROUP " + std::to_string(kPixelGroup) + "\n");
+int light_pass_rows() {
+  if (const char* env = std::getenv("AOSUITE_PIXEL_ROWS"); env && *env) {
+    return static_cast<int>(std::clamp(std::strtol(env, nullptr, 10), 1L, 2L));
+  }
+  const auto* device = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+  return device && software_renderer(device) ? 2 : 1;
+}
+
+Program make_pixel_program(const char* file, int rows) {
+  return make_program({file}, "#define PIXEL_GROUP " + std::to_string(kPixelGroup) +
+                                  "\n#define PIXEL_ROWS " + std::to_string(rows) + "\n");
 }
 
 int dispatch_shares() {
@@ -113,15 +122,14 @@ void dispatch_rows(GLuint program, GLuint groups_x, GLuint groups_y) {
 }
 
 void dispatch_pixels(GLuint program, std::initializer_list<std::pair<GLuint, GLenum>> images,
-                     int width, int height) {
+                     int width, int height, int rows) {
   GLuint unit = 0;
   for (const auto& [tex, format] : images) {
     glBindImageTexture(unit++, tex, 0, GL_FALSE, 0, GL_WRITE_ONLY, format);
   }
-  const auto groups = [](int n) {
-    return static_cast<GLuint>((n + kPixelGroup - 1) / kPixelGroup);
-  };
-  dispatch_rows(program, groups(width), groups(height));
+  glProgramUniform2i(program, glGetUniformLocation(program, "u_pixels"), width, height);
+  const auto groups = [](int n, int span) { return static_cast<GLuint>((n + span - 1) / span); };
+  dispatch_rows(program, groups(width, kPixelGroup), groups(height, kPixelGroup * rows));
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT |
                   GL_FRAMEBUFFER_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
 }

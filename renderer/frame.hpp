@@ -56,11 +56,22 @@ void draw_fullscreen(GLuint fb, int width, int height);
 // shaded. Colour attachment 0 is first cleared to 1, the AO of the sky.
 void draw_geometry_pixels(GLuint fb, int width, int height);
 
-// The compute passes' workgroups: kPixelGroup x kPixelGroup invocations, one per pixel.
+// The compute passes' workgroups: kPixelGroup x kPixelGroup invocations.
 inline constexpr int kPixelGroup = 8;
 
-// Links compute shader `file` with PIXEL_GROUP defined as kPixelGroup (its local size).
-Program make_pixel_program(const char* file);
+// How many pixels each invocation shades (pixel_main.glsl's PIXEL_ROWS, one above another) in
+// the pixel programs of a few instructions a pixel: the blend and the depth G-buffer's normals.
+// 2 on a software rasteriser, where a compute invocation costs more than a fragment (llvmpipe
+// calls a coroutine per 8-wide vector of invocations, its rasteriser a function per 4x4 block
+// of fragments): the 1080p blend took 33 ms so against 39 ms at one pixel and 32 ms drawn
+// (bench/README.md, "Two pixels an invocation"). The AO estimators keep 1: at 2, UE4's and
+// GTAO's took longer. 1 on a GPU, where the compute passes were measured so.
+// $AOSUITE_PIXEL_ROWS (1 or 2) overrides it, for tests and measurements.
+int light_pass_rows();
+
+// Links compute shader `file` with PIXEL_GROUP defined as kPixelGroup (its local size) and
+// PIXEL_ROWS as `rows`: a pixel program, which dispatch_pixels runs with the same rows.
+Program make_pixel_program(const char* file, int rows = 1);
 
 // How many contiguous runs the device splits a dispatch's workgroups into, one per thread:
 // Mesa's software rasterisers give each compute thread one (LP_NUM_THREADS of them, by default
@@ -73,13 +84,15 @@ int dispatch_shares();
 // the dispatch covers the whole image: the rows rounded up to a multiple of dispatch_shares().
 void dispatch_rows(GLuint program, GLuint groups_x, GLuint groups_y);
 
-// Binds `images` (texture, format) to image units 0..n-1 for writing and dispatches
-// (dispatch_rows) workgroups over width x height pixels; then orders those writes before what
-// reads them next (texel fetches, framebuffer use, read-back), as a draw's would be. A shader
-// whose pixels cost the same keeps gl_GlobalInvocationID's order (the blend: interleaved, it
-// measured slower on llvmpipe) and skips the spare rows as it skips a partial workgroup's.
+// Binds `images` (texture, format) to image units 0..n-1 for writing, sets the pixel program's
+// u_pixels to width x height and dispatches (dispatch_rows) its workgroups over them, `rows`
+// pixels an invocation (make_pixel_program's); then
+// orders those writes before what reads them next (texel fetches, framebuffer use, read-back),
+// as a draw's would be. A shader whose pixels cost the same keeps the workgroups' own order (the
+// blend: interleaved, it measured slower on llvmpipe) and skips the spare rows as it skips a
+// partial workgroup's.
 void dispatch_pixels(GLuint program, std::initializer_list<std::pair<GLuint, GLenum>> images,
-                     int width, int height);
+                     int width, int height, int rows = 1);
 
 struct PassTime {
   std::string pass;

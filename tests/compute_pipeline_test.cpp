@@ -101,20 +101,26 @@ TEST(ComputePipeline, SameImagesOneOverFullHd) {
 }
 
 // dispatch_rows interleaves the rows of workgroups over the device's shares of a dispatch, one
-// per llvmpipe thread (ctest runs this test once more with LP_NUM_THREADS=3). Whatever their
-// count, every pixel must be shaded once: at sizes whose rows of workgroups (1, 1 and 23) are
-// no multiple of 2 or 3, each technique's compute AO and images equal the fragment ones. A render
-// at another size comes between, so the compute pipeline writes into fresh images, where a pixel
-// it skipped would stay 0 and differ.
+// per llvmpipe thread, and each invocation of the blend shades light_pass_rows() pixels, 8 rows
+// apart (ctest runs this test once more with LP_NUM_THREADS=3 and once with
+// AOSUITE_PIXEL_ROWS=1). Whatever their counts, every pixel must be shaded once: at sizes whose
+// rows of workgroups (1, 1, 2 and 25 at one pixel an invocation; 1, 1, 1 and 13 at two) are
+// mostly no multiple of 2 or 3, and whose last workgroup's second pixels fall partly inside the
+// image (13 rows) or outside it (the others), each technique's compute AO and images equal the
+// fragment ones. A render at another size comes between, so the compute pipeline writes into
+// fresh images, where a pixel it skipped would stay 0 and differ.
 TEST(ComputePipeline, EveryPixelIsWrittenWhateverTheShares) {
   Renderer& renderer = shared_renderer();
   const char* threads = std::getenv("LP_NUM_THREADS");
   const int expected = threads && *threads ? std::atoi(threads)
                                            : static_cast<int>(std::thread::hardware_concurrency());
   EXPECT_EQ(dispatch_shares(), std::max(expected, 1)) << "llvmpipe's compute threads";
+  const char* rows = std::getenv("AOSUITE_PIXEL_ROWS");
+  EXPECT_EQ(light_pass_rows(), rows && *rows ? std::atoi(rows) : 2) << "pixels an invocation";
   const Scene village = builtin_scene("village");
   for (const TechniqueInfo* t : compute_techniques()) {
-    for (const auto& [w, h] : {std::pair{1, 1}, std::pair{7, 5}, std::pair{321, 181}}) {
+    for (const auto& [w, h] :
+         {std::pair{1, 1}, std::pair{7, 5}, std::pair{9, 13}, std::pair{321, 199}}) {
       RenderSettings s;
       s.width = w, s.height = h, s.technique = t->id, s.params = default_params(t->id);
       const Images fragment = render(village, 0, s, Pipeline::kFragment);
@@ -124,7 +130,7 @@ TEST(ComputePipeline, EveryPixelIsWrittenWhateverTheShares) {
       const Images compute = render(village, 0, s, Pipeline::kCompute);
       const std::string what = std::string(t->name) + " " + std::to_string(w) + "x" +
                                std::to_string(h) + ", " + std::to_string(dispatch_shares()) +
-                               " shares";
+                               " shares, " + std::to_string(light_pass_rows()) + " rows";
       EXPECT_EQ(differing_bytes(fragment.ao, compute.ao), 0) << what << ": float AO";
       EXPECT_EQ(differing_bytes(fragment.with_ao, compute.with_ao), 0) << what << ": with AO";
     }

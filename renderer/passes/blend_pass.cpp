@@ -4,7 +4,8 @@ namespace aosuite::renderer {
 
 BlendPass::BlendPass(Pipeline pipeline)
     : pipeline_(pipeline),
-      program_(pipeline == Pipeline::kCompute ? make_pixel_program("blend.comp")
+      rows_(light_pass_rows()),
+      program_(pipeline == Pipeline::kCompute ? make_pixel_program("blend.comp", rows_)
                                               : make_program({"fullscreen.vert", "blend.frag"})) {}
 
 PassTimer BlendPass::run(const GBuffer& g, GLuint ao, const BlendTarget& out) const {
@@ -18,7 +19,7 @@ PassTimer BlendPass::run(const GBuffer& g, GLuint ao, const BlendTarget& out) co
   if (pipeline_ == Pipeline::kCompute) {
     dispatch_pixels(
         p, {{out.images[0], GL_RGBA8}, {out.images[1], GL_RGBA8}, {out.images[2], GL_RGBA8}},
-        g.width, g.height);
+        g.width, g.height, rows_);
   } else {
     draw_fullscreen(out.framebuffer, g.width, g.height);
   }

@@ -23,6 +23,7 @@ class BlendPass {
 
  private:
   Pipeline pipeline_;
+  int rows_;  // pixels an invocation of blend.comp shades (light_pass_rows)
   Program program_;
 };
 

@@ -67,7 +67,8 @@ void GBufferPass::run(const GpuScene& scene, const Camera& camera, const GBuffer
 
 DepthGBufferPass::DepthGBufferPass()
     : raster_(make_program({"gbuffer.vert"})),
-      reconstruct_(make_pixel_program("depth_gbuffer.comp")) {}
+      rows_(light_pass_rows()),
+      reconstruct_(make_pixel_program("depth_gbuffer.comp", rows_)) {}
 
 std::vector<PassTimer> DepthGBufferPass::run(const GpuScene& scene, const Camera& camera,
                                              const GBuffer& g) {
@@ -87,7 +88,8 @@ std::vector<PassTimer> DepthGBufferPass::run(const GpuScene& scene, const Camera
   set_camera_uniforms(p, camera);
   glProgramUniform1f(p, glGetUniformLocation(p, "u_near"), camera.projection[3][2]);
   bind_textures(p, {{"u_zbuffer", g.zbuffer.get()}});
-  dispatch_pixels(p, {{g.depth.get(), GL_R32F}, {g.normal.get(), GL_RGBA16F}}, g.width, g.height);
+  dispatch_pixels(p, {{g.depth.get(), GL_R32F}, {g.normal.get(), GL_RGBA16F}}, g.width, g.height,
+                  rows_);
   times.back().stop();
   check_gl("depth-only G-buffer pass");
   return times;

@@ -39,7 +39,9 @@ class DepthGBufferPass {
   std::vector<PassTimer> run(const GpuScene& scene, const Camera& camera, const GBuffer& target);
 
  private:
-  Program raster_, reconstruct_;
+  Program raster_;
+  int rows_;  // pixels an invocation of depth_gbuffer.comp shades (light_pass_rows)
+  Program reconstruct_;
   Framebuffer depth_only_;
   GLuint framebuffer_zbuffer_ = 0;  // the depth texture depth_only_ was made for
 };

@@ -2,13 +2,11 @@
 // The compute pipeline's blend: blend.glsl per pixel, stored into the three RGBA8 images that
 // blend.frag's draw writes as render targets.
 #include "blend.glsl"
-layout(local_size_x = PIXEL_GROUP, local_size_y = PIXEL_GROUP) in;
+#include "pixel_main.glsl"
 layout(rgba8, binding = 0) writeonly uniform image2D u_no_ao_out;
 layout(rgba8, binding = 1) writeonly uniform image2D u_with_ao_out;
 layout(rgba8, binding = 2) writeonly uniform image2D u_ao_only_out;
-void main() {
-  ivec2 p = ivec2(gl_GlobalInvocationID.xy);
-  if (any(greaterThanEqual(p, imageSize(u_no_ao_out)))) return;
+void shade_pixel(ivec2 p) {
   vec4 no_ao, with_ao, ao_only;
   blend(p, no_ao, with_ao, ao_only);
   imageStore(u_no_ao_out, p, no_ao);

@@ -3,7 +3,7 @@
 // reversed-Z depth buffer alone (XeGTAO reconstructs its normals so), written where the full
 // G-buffer pass writes them. Reversed Z stores near / z, so z = near / stored; 0 is sky.
 #include "common.glsl"
-layout(local_size_x = PIXEL_GROUP, local_size_y = PIXEL_GROUP) in;
+#include "pixel_main.glsl"
 layout(r32f, binding = 0) writeonly uniform image2D u_depth_out;
 layout(rgba16f, binding = 1) writeonly uniform image2D u_normal_out;
 uniform sampler2D u_zbuffer;
@@ -19,10 +19,8 @@ vec3 position_at(ivec2 q, vec2 size) {
 }
 #include "depth_normal.glsl"
 
-void main() {
-  ivec2 p = ivec2(gl_GlobalInvocationID.xy);
-  ivec2 size = imageSize(u_depth_out);
-  if (any(greaterThanEqual(p, size))) return;
+void shade_pixel(ivec2 p) {
+  ivec2 size = u_pixels;
   float z = linear_depth(p);
   vec3 n = z > 0.0 ? depth_normal(p, view_position(vec2(p) + 0.5, vec2(size), z), vec2(size))
                    : vec3(0.0);

@@ -16,7 +16,3 @@ uvec2 image_workgroup() {
   uint j = gl_WorkGroupID.y;
   return uvec2(gl_WorkGroupID.x, (j % rows) * shares + j / rows);
 }
-
-ivec2 image_invocation() {
-  return ivec2(image_workgroup() * gl_WorkGroupSize.xy + gl_LocalInvocationID.xy);
-}

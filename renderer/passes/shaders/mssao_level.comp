@@ -4,11 +4,8 @@
 // one program serves both.
 #include "common.glsl"
 #include "mssao_level.glsl"
-layout(local_size_x = PIXEL_GROUP, local_size_y = PIXEL_GROUP) in;
-#include "dispatch_order.glsl"  // image_invocation
+#include "dispatch_order.glsl"  // image_workgroup
+#define PIXEL_WORKGROUP image_workgroup()
+#include "pixel_main.glsl"
 layout(binding = 0) writeonly uniform image2D u_level_out;
-void main() {
-  ivec2 p = image_invocation();
-  if (any(greaterThanEqual(p, imageSize(u_level_out)))) return;
-  imageStore(u_level_out, p, mssao_level(p));
-}
+void shade_pixel(ivec2 p) { imageStore(u_level_out, p, mssao_level(p)); }
