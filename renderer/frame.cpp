@@ -94,8 +94,7 @@ int light_pass_rows() {
   if (const char* env = std::getenv("AOSUITE_PIXEL_ROWS"); env && *env) {
     return static_cast<int>(std::clamp(std::strtol(env, nullptr, 10), 1L, 2L));
   }
-  const auto* device = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
-  return device && software_renderer(device) ? 2 : 1;
+  return 2;
 }
 
 Program make_pixel_program(const char* file, int rows) {

@@ -60,13 +60,13 @@ void draw_geometry_pixels(GLuint fb, int width, int height);
 inline constexpr int kPixelGroup = 8;
 
 // How many pixels each invocation shades (pixel_main.glsl's PIXEL_ROWS, one above another) in
-// the pixel programs of a few instructions a pixel: the blend and the depth G-buffer's normals.
-// 2 on a software rasteriser, where a compute invocation costs more than a fragment (llvmpipe
-// calls a coroutine per 8-wide vector of invocations, its rasteriser a function per 4x4 block
-// of fragments): the 1080p blend took 33 ms so against 39 ms at one pixel and 32 ms drawn
-// (bench/README.md, "Two pixels an invocation"). The AO estimators keep 1: at 2, UE4's and
-// GTAO's took longer. 1 on a GPU, where the compute passes were measured so.
-// $AOSUITE_PIXEL_ROWS (1 or 2) overrides it, for tests and measurements.
+// the pixel programs of a few instructions a pixel, the blend and the depth G-buffer's normals:
+// 2, which costs less on both kinds of device measured (bench/README.md, "Two pixels an
+// invocation"). On llvmpipe, which calls a coroutine per 8-wide vector of invocations where its
+// rasteriser calls a function per 4x4 block of fragments, the 1080p blend took 33 ms against
+// 39 ms at one pixel and 32 ms drawn; on an H200 0.024 against 0.028 ms. The AO estimators keep
+// 1: at 2, UE4's and GTAO's took longer on llvmpipe. $AOSUITE_PIXEL_ROWS (1 or 2) overrides it,
+// for tests and measurements.
 int light_pass_rows();
 
 // Links compute shader `file` with PIXEL_GROUP defined as kPixelGroup (its local size) and

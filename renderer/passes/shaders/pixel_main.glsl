@@ -1,7 +1,7 @@
 // main() of a pixel program (make_pixel_program, dispatch_pixels): each invocation shades
 // PIXEL_ROWS pixels (1 or 2) of one column, PIXEL_GROUP rows apart, so a workgroup covers
-// PIXEL_GROUP x PIXEL_GROUP * PIXEL_ROWS pixels. Two cost llvmpipe less in a pass of a few
-// instructions a pixel, whose coroutine call per 8-wide vector of invocations is then a large
+// PIXEL_GROUP x PIXEL_GROUP * PIXEL_ROWS pixels. Two cost less in a pass of a few
+// instructions a pixel, where what each invocation costs before its first instruction is a large
 // share (frame.hpp, light_pass_rows). The shader defines shade_pixel() and may define
 // PIXEL_WORKGROUP (the image's workgroup this invocation shades; default its own). Pixels past
 // the image's edge return first.
