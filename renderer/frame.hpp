@@ -86,11 +86,10 @@ void dispatch_rows(GLuint program, GLuint groups_x, GLuint groups_y);
 
 // Binds `images` (texture, format) to image units 0..n-1 for writing, sets the pixel program's
 // u_pixels to width x height and dispatches (dispatch_rows) its workgroups over them, `rows`
-// pixels an invocation (make_pixel_program's); then
-// orders those writes before what reads them next (texel fetches, framebuffer use, read-back),
-// as a draw's would be. A shader whose pixels cost the same keeps the workgroups' own order (the
-// blend: interleaved, it measured slower on llvmpipe) and skips the spare rows as it skips a
-// partial workgroup's.
+// pixels an invocation (make_pixel_program's); then orders those writes before what reads them
+// next (texel fetches, framebuffer use, read-back), as a draw's would be. A shader whose pixels
+// cost the same keeps the workgroups' own order (the blend: interleaved, it measured slower on
+// llvmpipe) and skips the spare rows as it skips a partial workgroup's.
 void dispatch_pixels(GLuint program, std::initializer_list<std::pair<GLuint, GLenum>> images,
                      int width, int height, int rows = 1);
 
