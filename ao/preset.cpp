@@ -68,11 +68,11 @@ bool is_preset_file(std::string_view arg) {
   return arg.find('/') != std::string_view::npos || arg.ends_with(".toml");
 }
 
-std::vector<std::string> builtin_preset_names() {
+std::vector<std::string> builtin_preset_names(rd::Technique technique) {
+  const std::string suffix = fmt::format("-{}.toml", rd::technique_name(technique));
   std::vector<std::string> names;
   for (const auto& [file, text] : embedded_presets()) {
-    std::string name(file.substr(0, file.rfind('-')));  // NAME-TECHNIQUE.toml
-    if (std::ranges::find(names, name) == names.end()) names.push_back(name);
+    if (file.ends_with(suffix)) names.emplace_back(file.substr(0, file.size() - suffix.size()));
   }
   return names;
 }
@@ -84,9 +84,10 @@ Preset find_preset(const std::string& arg, rd::Technique technique,
   const auto& embedded = embedded_presets();
   const auto it = embedded.find(file);
   if (it == embedded.end()) {
-    throw std::invalid_argument(
-        fmt::format("no built-in preset '{}' for {} (built in: {}; a preset file ends in .toml)",
-                    arg, rd::technique_name(technique), fmt::join(builtin_preset_names(), ", ")));
+    throw std::invalid_argument(fmt::format(
+        "no built-in preset '{}' for {} (its built-in ones: {}; a preset file ends "
+        "in .toml)",
+        arg, rd::technique_name(technique), fmt::join(builtin_preset_names(technique), ", ")));
   }
   return parse_preset(it->second, "built-in preset " + file);
 }

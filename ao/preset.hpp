@@ -39,8 +39,8 @@ bool is_preset_file(std::string_view arg);
 // unknown name.
 Preset find_preset(const std::string& arg, renderer::Technique technique,
                    const std::filesystem::path& dir = {});
-// The names of the built-in presets ("tuned").
-std::vector<std::string> builtin_preset_names();
+// The names of `technique`'s built-in presets ("half", "tuned"; PMI has no "half").
+std::vector<std::string> builtin_preset_names(renderer::Technique technique);
 
 // Sets the preset's parameters on `params` of `technique`; throws std::invalid_argument naming
 // the file when the preset is another technique's.

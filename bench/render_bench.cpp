@@ -57,6 +57,16 @@ void BM_Frame(benchmark::State& state, rd::Technique t, rd::Pipeline pipeline) {
   run(state, village(), village().views[0], s);
 }
 
+// The AO pass at half the width and height (half_res=1, the `half` preset), downsample and
+// upsample included: beside BM_Frame/TECHNIQUE/PIPELINE at the same size, what it saves.
+void BM_FrameHalf(benchmark::State& state, rd::Technique t, rd::Pipeline pipeline) {
+  const auto w = static_cast<int>(state.range(0)), h = w * 9 / 16;
+  rd::RenderSettings s = settings(t, w, h);
+  s.pipeline = pipeline;
+  s.params.half_res = 1;
+  run(state, village(), village().views[0], s);
+}
+
 void BM_OnlyNoAoImage(benchmark::State& state) {  // saving: AO and blur not run
   rd::RenderSettings s = settings(rd::Technique::kAlchemy, 640, 360);
   s.outputs = rd::parse_outputs("no_ao");
@@ -157,7 +167,8 @@ BENCHMARK_CAPTURE(BM_GBuffer, depth_only, true)
     ->Unit(benchmark::kMillisecond);
 
 // One frame benchmark per registered technique (renderer/technique.hpp) and pipeline,
-// BM_Frame/TECHNIQUE/PIPELINE/WIDTH, so a new technique is measured without an edit here. PMI's
+// BM_Frame/TECHNIQUE/PIPELINE/WIDTH (and BM_FrameHalf/... for the screen-space ones), so a new
+// technique is measured without an edit here. PMI's
 // first frame (the warm-up) builds its cached maps; its own pass is rasterised in both.
 const bool kFramesRegistered = [] {
   for (const rd::TechniqueInfo& t : rd::techniques()) {
@@ -168,6 +179,13 @@ const bool kFramesRegistered = [] {
           ->Arg(640)
           ->Arg(1920)
           ->Arg(3840)
+          ->Unit(benchmark::kMillisecond);
+      if (t.space != rd::Space::kScreen) continue;
+      const std::string half =
+          "BM_FrameHalf/" + std::string(t.name) + "/" + std::string(rd::pipeline_name(p));
+      benchmark::RegisterBenchmark(half.c_str(), BM_FrameHalf, t.id, p)
+          ->Arg(640)
+          ->Arg(1920)
           ->Unit(benchmark::kMillisecond);
     }
   }

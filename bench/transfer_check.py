@@ -2,10 +2,11 @@
 """Do the built-in tuned presets transfer to scenes the tuner never saw? For each technique,
 scene view and radius: AO RMSE against the ray-traced reference (`aosuite error`) with the
 technique's defaults and with `--preset tuned`, and their ratio (tuned / defaults; < 1 is better).
+`--preset half` measures what the half-resolution AO costs in error the same way.
 
   python3 bench/transfer_check.py --scene suites/scenes/snowden.toml
-      [--technique gtao ...] [--radius 0.25 --radius 0.5 --radius 1] [--width 320 --height 180]
-      [--rays 256] [--json out.json]
+      [--preset tuned] [--technique gtao ...] [--radius 0.25 --radius 0.5 --radius 1]
+      [--width 320 --height 180] [--rays 256] [--json out.json]
 
 Prints one row per (technique, view, radius), then per technique: how many pairs got worse, the
 worst ratio, and the geometric mean ratio. Needs build/aosuite (and the scenes' meshes).
@@ -43,6 +44,7 @@ def rmse(args, scene, view, technique, radius, preset):
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--scene", action="append", required=True)
+    ap.add_argument("--preset", default="tuned", help="the built-in preset or file to measure")
     ap.add_argument("--technique", action="append")
     ap.add_argument("--radius", action="append", type=float)
     ap.add_argument("--width", type=int, default=320)
@@ -58,11 +60,12 @@ def main():
             for r in radii:
                 for t in techniques:
                     d = rmse(args, scene, view, t, r, None)
-                    p = rmse(args, scene, view, t, r, "tuned")
+                    p = rmse(args, scene, view, t, r, args.preset)
                     rows.append({"technique": t, "scene": scene, "view": view, "radius": r,
-                                 "defaults": d, "tuned": p, "ratio": p / d if d > 0 else 1.0})
+                                 "defaults": d, args.preset: p, "ratio": p / d if d > 0 else 1.0})
                     print(f"{t:8} {os.path.basename(scene):14} {view:20} r={r:<5} "
-                          f"defaults {d:.4f} tuned {p:.4f} ratio {rows[-1]['ratio']:.3f}", flush=True)
+                          f"defaults {d:.4f} {args.preset} {p:.4f} ratio {rows[-1]['ratio']:.3f}",
+                          flush=True)
     print()
     print(f"{'technique':10} pairs  worse  worse>5%  worst ratio  geo-mean ratio")
     for t in techniques:

@@ -13,6 +13,7 @@
 #include "renderer/passes/blend_pass.hpp"
 #include "renderer/passes/blur_pass.hpp"
 #include "renderer/passes/gbuffer_pass.hpp"
+#include "renderer/passes/half_res_pass.hpp"
 #include "renderer/pmi/pmi_cache.hpp"
 #include "renderer/pmi/pmi_pass.hpp"
 #include "renderer/pmi/viewpoint_sphere.hpp"
@@ -58,6 +59,7 @@ struct Renderer::State {
   // Per pipeline, compiled on first use.
   std::map<Pipeline, std::unique_ptr<BlendPass>> blend_passes;
   std::map<std::pair<Technique, Pipeline>, std::unique_ptr<AoPass>> ao_passes;
+  std::map<Pipeline, std::unique_ptr<HalfResPass>> half_res_passes;
   std::unique_ptr<PmiPass> pmi_pass;  // compiled on first use
   PmiCache pmi_cache;
   // Targets, reallocated when the size changes.
@@ -85,6 +87,12 @@ struct Renderer::State {
   AoPass& ao_pass(Technique t, Pipeline p) {
     auto& pass = ao_passes[{t, p}];
     if (!pass) pass = make_ao_pass(t, p);
+    return *pass;
+  }
+
+  HalfResPass& half_res(Pipeline p) {
+    auto& pass = half_res_passes[p];
+    if (!pass) pass = std::make_unique<HalfResPass>(p);
     return *pass;
   }
 
@@ -197,9 +205,18 @@ Images Renderer::render(const Scene& scene, const View& view, const RenderSettin
       timers.push_back(st.pmi_pass->run(scene, pmi_override ? *pmi_override : *cached, camera,
                                         s.params, st.ao_fb.get()));
     } else {
-      for (PassTimer& t :
-           st.ao_pass(s.technique, pipeline).run(st.gbuffer, camera, s.params, ao_target))
-        timers.push_back(std::move(t));
+      AoPass& ao_pass = st.ao_pass(s.technique, pipeline);
+      if (s.params.half_res) {
+        HalfResPass& half = st.half_res(pipeline);
+        timers.push_back(half.downsample(st.gbuffer));
+        for (PassTimer& t :
+             ao_pass.run(half.gbuffer(), half.camera(camera), s.params, half.target()))
+          timers.push_back(std::move(t));
+        timers.push_back(half.upsample(st.gbuffer, ao_target));
+      } else {
+        for (PassTimer& t : ao_pass.run(st.gbuffer, camera, s.params, ao_target))
+          timers.push_back(std::move(t));
+      }
     }
     if (s.outputs.pass_hashes && s.params.blur != Blur::kNone) {  // before the blur overwrites it
       if (st.unblurred_ao.get() == 0) st.unblurred_ao = make_texture(GL_R32F, s.width, s.height);

@@ -89,6 +89,9 @@ struct AoParams {
   float intensity = 1;  // sigma
   float contrast = 1;   // k (Alchemy, SAO), power (UE4), final power (GTAO)
   Blur blur = Blur::kBilateral;
+  // 1: the screen-space AO pass at half the width and height, brought back up depth-aware
+  // (passes/half_res_pass.hpp); 0: at the image's size.
+  int half_res = 0;
   MssaoParams mssao;
   PmiParams pmi;
   GtaoParams gtao;

@@ -137,6 +137,27 @@ TEST(ComputePipeline, EveryPixelIsWrittenWhateverTheShares) {
   }
 }
 
+// At half resolution (half_res=1) the downsample, the technique's pass on the half-size
+// G-buffer and the upsample are each drawn or dispatched, so the two pipelines must agree there
+// too: at sizes whose halves are odd or 1x1 (7x5 -> 4x3, 1x1 -> 1x1, 321x181 -> 161x91).
+TEST(ComputePipeline, SameAoAtHalfResolution) {
+  const Scene corner = builtin_scene("corner");
+  for (const TechniqueInfo* t : compute_techniques()) {
+    for (const auto& [w, h] : {std::pair{1, 1}, std::pair{7, 5}, std::pair{321, 181}}) {
+      RenderSettings s;
+      s.width = w, s.height = h, s.technique = t->id, s.params = default_params(t->id);
+      s.params.half_res = 1;
+      s.outputs = parse_outputs("with_ao,ao_float");
+      const Images fragment = render(corner, 1, s, Pipeline::kFragment);
+      const Images compute = render(corner, 1, s, Pipeline::kCompute);
+      const std::string what = std::string(t->name) + " " + std::to_string(w) + "x" +
+                               std::to_string(h) + " at half resolution";
+      EXPECT_EQ(differing_bytes(fragment.ao, compute.ao), 0) << what << ": float AO";
+      EXPECT_EQ(differing_bytes(fragment.with_ao, compute.with_ao), 0) << what << ": with AO";
+    }
+  }
+}
+
 // PMI is drawn over the scene in both pipelines (object space); its blend is the compute one.
 TEST(ComputePipeline, ObjectSpaceTechniqueRendersInBoth) {
   const Scene corner = builtin_scene("corner");

@@ -152,6 +152,32 @@ TEST_F(Presets, TuneDefaultsToTheBuiltInScenesAndTheProjectsSceneFiles) {
 
 // A built-in preset is named where a file is: `--preset tuned` is ao/presets/tuned-T.toml for
 // every technique, in render and in a suite; an unknown name lists the built-ins.
+// `--preset half` is each screen-space technique's defaults with its AO pass at half
+// resolution: the render's parameters are the defaults' but half_res, and its passes include
+// the downsample and the upsample (docs/rendering.md, "Half-resolution AO").
+TEST_F(Presets, TheBuiltInHalfPresetRunsTheAoAtHalfResolution) {
+  for (const char* technique : {"alchemy", "sao", "mssao", "ue4", "gtao", "bitmask"}) {
+    const test::Outcome r =
+        aosuite(std::string("render --scene corner --technique ") + technique +
+                " --preset half --width 16 --height 9 --outputs with_ao --out o");
+    ASSERT_EQ(r.rc, 0) << technique << r.err;
+    const nlohmann::json j = nlohmann::json::parse(
+        read_text(dir_ / "o" / ("corner_inside_" + std::string(technique) + ".json")));
+    EXPECT_EQ(j.at("params").at("half_res"), 1) << technique;
+    ASSERT_EQ(aosuite(std::string("render --scene corner --technique ") + technique +
+                      " --width 16 --height 9 --outputs with_ao --out d")
+                  .rc,
+              0);
+    nlohmann::json defaults = nlohmann::json::parse(
+        read_text(dir_ / "d" / ("corner_inside_" + std::string(technique) + ".json")))["params"];
+    EXPECT_EQ(defaults.at("half_res"), 0) << technique;
+    defaults["half_res"] = 1;
+    EXPECT_EQ(j.at("params"), defaults) << technique << ": the defaults but half_res";
+    EXPECT_TRUE(j.at("median_ms").contains("half_downsample")) << technique;
+    EXPECT_TRUE(j.at("median_ms").contains("half_upsample")) << technique;
+  }
+}
+
 TEST_F(Presets, TheBuiltInTunedPresetIsNamedLikeAFile) {
   for (const char* technique : {"alchemy", "sao", "mssao", "ue4", "gtao", "bitmask", "pmi"}) {
     const test::Outcome r =
@@ -175,9 +201,15 @@ TEST_F(Presets, TheBuiltInTunedPresetIsNamedLikeAFile) {
   }
   test::Outcome r = aosuite("render --technique gtao --preset nosuch --out wrong");
   EXPECT_EQ(r.rc, 2);
-  EXPECT_NE(r.err.find("no built-in preset 'nosuch' for gtao (built in: tuned"), std::string::npos)
+  EXPECT_NE(r.err.find("no built-in preset 'nosuch' for gtao (its built-in ones: half, tuned;"),
+            std::string::npos)
       << r.err;
   EXPECT_FALSE(fs::exists(dir_ / "wrong"));
+  r = aosuite("render --technique pmi --preset half --out wrong");  // object space: no half
+  EXPECT_EQ(r.rc, 2);
+  EXPECT_NE(r.err.find("no built-in preset 'half' for pmi (its built-in ones: tuned;"),
+            std::string::npos)
+      << r.err;
 
   std::ofstream(dir_ / "s.toml") << "[[case]]\nscene = \"corner\"\nviews = [\"inside\"]\n"
                                     "techniques = [\"gtao\", \"sao\"]\nwidth = 16\nheight = 9\n"

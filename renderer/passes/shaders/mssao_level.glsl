@@ -1,4 +1,5 @@
 #include "alchemy_estimator.glsl"
+#include "bilateral_upsample.glsl"
 // One level of Multi-Scale AO, coarse to fine. Local occlusion O = 1 - Alchemy(level) with
 // the level's own intensity; combined with the bilaterally upsampled coarser result as
 // (max, sum) in RG: R = max(O, up.R), G = O + up.G. The finest level writes visibility
@@ -14,36 +15,15 @@ uniform bool u_local;              // false: this level's weight is 0, only pass
 uniform bool u_finest;
 uniform float u_levels;            // levels that contribute, for the average
 
-// Bilateral upsample: bilinear weights times depth and normal similarity (t_d 16, t_n 8).
-vec2 upsample(ivec2 p, float z, vec3 n) {
-  ivec2 csize = textureSize(u_coarse, 0);
-  vec2 cp = (vec2(p) + 0.5) * 0.5 - 0.5;
-  ivec2 base = ivec2(floor(cp));
-  vec2 f = cp - vec2(base);
-  vec2 sum = vec2(0.0);
-  float wsum = 0.0;
-  for (int i = 0; i < 4; ++i) {
-    ivec2 o = ivec2(i & 1, i >> 1);
-    ivec2 q = clamp(base + o, ivec2(0), csize - 1);
-    float zq = texelFetch(u_coarse_depth, q, 0).r;
-    if (zq <= 0.0) continue;
-    float bilinear = (o.x == 1 ? f.x : 1.0 - f.x) * (o.y == 1 ? f.y : 1.0 - f.y);
-    float wd = pow(1.0 / (1.0 + abs(zq - z) / z), 16.0);
-    float wn = pow(max(0.0, (dot(texelFetch(u_coarse_normal, q, 0).xyz, n) + 1.0) * 0.5), 8.0);
-    float w = bilinear * wd * wn + 1e-6;
-    sum += w * texelFetch(u_coarse, q, 0).rg;
-    wsum += w;
-  }
-  return wsum > 0.0 ? sum / wsum : vec2(0.0);
-}
-
 // The level's texel at p: (max, sum) of occlusion, or visibility on the finest level.
 vec4 mssao_level(ivec2 p) {
   float z = texelFetch(u_depth, p, 0).r;
   if (z <= 0.0) return u_finest ? vec4(1.0) : vec4(0.0);
   vec3 n = safe_normalize(texelFetch(u_normal, p, 0).xyz);
   float local = u_local ? 1.0 - alchemy_ao(u_depth, p, z, n) : 0.0;
-  vec2 up = u_has_coarse ? upsample(p, z, n) : vec2(0.0);
+  vec2 up = u_has_coarse
+                ? bilateral_upsample(u_coarse, u_coarse_depth, u_coarse_normal, p, z, n, vec2(0.0))
+                : vec2(0.0);
   vec2 combined = vec2(max(local, up.x), local + up.y);
   if (u_finest) {
     float a = (1.0 - combined.x) * (1.0 - combined.y / max(u_levels, 1.0));
