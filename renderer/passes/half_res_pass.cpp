@@ -4,12 +4,6 @@
 
 namespace aosuite::renderer {
 
-namespace {
-// mssao_downsample.glsl's relative depth span under which two children are averaged (as
-// MSSAO's levels use it).
-constexpr float kDepthThreshold = 0.05f;
-}  // namespace
-
 HalfResPass::HalfResPass(Pipeline pipeline)
     : pipeline_(pipeline),
       downsample_(make_ao_program(pipeline, "mssao_downsample")),
@@ -27,7 +21,6 @@ PassTimer HalfResPass::downsample(const GBuffer& full) {
   }
   PassTimer timer("half_downsample");
   const GLuint d = downsample_.get();
-  glProgramUniform1f(d, glGetUniformLocation(d, "u_depth_threshold"), kDepthThreshold);
   bind_textures(d, {{"u_depth", full.depth.get()}, {"u_normal", full.normal.get()}});
   if (pipeline_ == Pipeline::kCompute) {
     dispatch_pixels(d, {{half_.depth.get(), GL_R32F}, {half_.normal.get(), GL_RGBA16F}}, w, h);

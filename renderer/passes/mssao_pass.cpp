@@ -13,7 +13,6 @@ namespace aosuite::renderer {
 namespace {
 
 constexpr int kLevels = 5;
-constexpr float kDepthThreshold = 0.05f;  // median downsampling: relative depth span
 
 struct Level {
   int width = 0, height = 0;
@@ -47,7 +46,6 @@ class MssaoPass final : public AoPass {
 
     PassTimer down_timer("mssao_downsample");
     const GLuint d = downsample_.get();
-    glProgramUniform1f(d, glGetUniformLocation(d, "u_depth_threshold"), kDepthThreshold);
     for (int l = 1; l <= top; ++l) {
       bind_textures(d, {{"u_depth", depth_of(l - 1)}, {"u_normal", normal_of(l - 1)}});
       const Level& lv = levels_[l];

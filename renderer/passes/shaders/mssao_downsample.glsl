@@ -3,7 +3,9 @@
 // second nearest, so a coarse texel is always on a real surface. Sky children are left out.
 uniform sampler2D u_depth;
 uniform sampler2D u_normal;
-uniform float u_depth_threshold;  // relative: fraction of the depth
+// The relative depth span (a fraction of the nearest depth) under which the middle two are
+// averaged.
+const float kDepthThreshold = 0.05;
 // The coarse texel p: its depth (0 on sky) in x, its normal in yzw.
 vec4 mssao_downsample(ivec2 p) {
   ivec2 hi = textureSize(u_depth, 0) - 1;
@@ -23,7 +25,7 @@ vec4 mssao_downsample(ivec2 p) {
   }
   if (count == 0) return vec4(0.0);
   int lo = (count - 1) / 2, up = count / 2;  // the middle one or two
-  if (z[count - 1] - z[0] <= u_depth_threshold * z[0]) {
+  if (z[count - 1] - z[0] <= kDepthThreshold * z[0]) {
     return vec4(0.5 * (z[lo] + z[up]), normalize(n[lo] + n[up] + vec3(0.0, 0.0, 1e-6)));
   }
   return vec4(z[lo], n[lo]);
