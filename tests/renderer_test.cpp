@@ -573,10 +573,10 @@ TEST(Renderer, SkipsWorkNobodyAskedFor) {
 
 // half_res=1 runs the technique's pass over a quarter of the pixels and brings its AO back up
 // depth-aware (half_res_pass.hpp). At 320x180 on the village street, each technique with its
-// default blur: the sky stays exactly 1,
-// the AO over the geometry is close to the full-resolution AO (a kernel of the same world
-// radius over half as many pixels sees the same occluders), it is not the same AO (the
-// parameter is not ignored), and the frame names the two passes it adds.
+// default blur: the sky stays exactly 1, the AO over the geometry is close to the
+// full-resolution AO (a kernel of the same world radius over half as many pixels sees the same
+// occluders), it is not the same AO (the parameter is not ignored), and the frame names the two
+// passes it adds.
 TEST(Renderer, HalfResolutionAoIsCloseToFullAndKeepsTheSky) {
   const Scene village = builtin_scene("village");
   for (Technique t : kAll) {
