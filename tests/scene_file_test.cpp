@@ -158,8 +158,8 @@ TEST_F(MeshFiles, BytesAlreadyReadAreParsedWithoutOpeningThePath) {
       load_mesh(dir_ / "absent.ply", std::vector<unsigned char>(text.begin(), text.end()));
   EXPECT_EQ(m.triangles.size(), 4u);
   EXPECT_EQ(m.positions, load_mesh(file("t.ply", text)).positions);
-  const std::string e = error_of([&] { load_mesh(dir_ / "t.stl", {}); });
-  EXPECT_NE(e.find("t.stl: unsupported mesh format"), std::string::npos) << e;
+  const std::string e = error_of([&] { load_mesh(dir_ / "t.fbx", {}); });
+  EXPECT_NE(e.find("t.fbx: unsupported mesh format"), std::string::npos) << e;
   const std::string truncated = error_of([&] {
     load_mesh(dir_ / "absent.ply", std::vector<unsigned char>(text.begin(), text.end() - 20));
   });

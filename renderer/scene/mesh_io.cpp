@@ -11,6 +11,7 @@
 #include "common/file_io.hpp"
 #include "common/printable.hpp"
 #include "renderer/scene/mesh_check.hpp"
+#include "renderer/scene/stl_mesh.hpp"
 
 namespace aosuite::renderer {
 namespace {
@@ -75,17 +76,18 @@ void drop_materials(std::vector<unsigned char>& obj) {
   }
 }
 
-// The file's format from its extension, refused before any byte is read if it is none of three.
+// The file's format from its extension, refused before any byte is read if it is none of four.
 std::string mesh_format(const std::filesystem::path& path) {
   std::string ext = lower_extension(path);
-  if (ext != ".ply" && ext != ".obj" && ext != ".off") {
-    fail(path, "unsupported mesh format (expected .ply, .obj or .off)");
+  if (ext != ".ply" && ext != ".obj" && ext != ".off" && ext != ".stl") {
+    fail(path, "unsupported mesh format (expected .ply, .obj, .off or .stl)");
   }
   return ext;
 }
 
 Mesh parse_mesh(const std::filesystem::path& path, const std::string& ext,
                 std::vector<unsigned char> bytes) {
+  if (ext == ".stl") return read_stl(path.string(), bytes);
   if (ext == ".ply") check_ply(path.string(), bytes);
   if (ext == ".off") check_off(path.string(), bytes);
   if (ext == ".obj") {
