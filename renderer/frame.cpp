@@ -1,6 +1,7 @@
 #include "renderer/frame.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <glm/gtc/matrix_transform.hpp>
@@ -133,20 +134,47 @@ void dispatch_pixels(GLuint program, std::initializer_list<std::pair<GLuint, GLe
                   GL_FRAMEBUFFER_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
 }
 
+namespace {
+
+bool device_is_cpu() {
+  const auto* device = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+  return device && software_renderer(device);
+}
+
+double ms_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+      .count();
+}
+
+}  // namespace
+
 PassTimer::PassTimer(std::string name) : name_(std::move(name)) {
+  if (device_is_cpu()) {
+    glFinish();
+    start_ = std::chrono::steady_clock::now();
+    return;
+  }
   GLuint id = 0;
   glCreateQueries(GL_TIME_ELAPSED, 1, &id);
   query_ = Query(id);
-  // Submit the work so far (no wait): a software rasteriser such as llvmpipe bins a query's
-  // begin into whatever batch is open, which would stamp it while the previous pass still
-  // rasterises and charge that pass's tail to this one.
+  // Submit the work so far (no wait): a rasteriser that bins a query's begin into whatever
+  // batch is open would stamp it while the previous pass still runs and charge that pass's
+  // tail to this one.
   glFlush();
   glBeginQuery(GL_TIME_ELAPSED, id);
 }
 
-void PassTimer::stop() { glEndQuery(GL_TIME_ELAPSED); }
+void PassTimer::stop() {
+  if (query_.get() == 0) {
+    glFinish();
+    wall_ms_ = ms_since(start_);
+    return;
+  }
+  glEndQuery(GL_TIME_ELAPSED);
+}
 
 PassTime PassTimer::read() const {
+  if (query_.get() == 0) return {name_, wall_ms_};
   GLuint64 ns = 0;
   glGetQueryObjectui64v(query_.get(), GL_QUERY_RESULT, &ns);
   return {name_, static_cast<double>(ns) * 1e-6};

@@ -1,6 +1,7 @@
 // What every pass shares: the camera, the G-buffer, and per-pass timing.
 #pragma once
 
+#include <chrono>
 #include <glm/glm.hpp>
 #include <string>
 #include <vector>
@@ -95,13 +96,17 @@ void dispatch_pixels(GLuint program, std::initializer_list<std::pair<GLuint, GLe
 
 struct PassTime {
   std::string pass;
-  double gpu_ms = 0;  // GL_TIME_ELAPSED
+  double gpu_ms = 0;  // the device's time: GL_TIME_ELAPSED on a GPU, wall time on a CPU (PassTimer)
 };
 
-// Times one pass on the GPU without stalling it: construction begins a GL_TIME_ELAPSED query
+// Times one pass. On a GPU without stalling it: construction begins a GL_TIME_ELAPSED query
 // and stop() ends it; read() waits for the result, so call it once the frame's work is done
 // (a glFinish or the read-back has waited already). Waiting after every pass would drain the
 // pipeline between passes, which on a GPU costs more than the short passes themselves.
+// On a software renderer, whose device is this CPU, by the wall clock between a glFinish at
+// construction and one at stop(): llvmpipe's GL_TIME_ELAPSED charges a dispatch's work, and a
+// draw's in a context that also dispatches, to no pass or another (SAO's dispatched AO pass read
+// 0.25 ms where it took 59 ms, the G-buffer before it 0.08 ms where it took 19; bench/README.md).
 class PassTimer {
  public:
   explicit PassTimer(std::string name);
@@ -110,7 +115,9 @@ class PassTimer {
 
  private:
   std::string name_;
-  Query query_;
+  Query query_;  // none on a CPU
+  std::chrono::steady_clock::time_point start_;
+  double wall_ms_ = 0;
 };
 
 }  // namespace aosuite::renderer

@@ -13,6 +13,7 @@
 #include <thread>
 #include <vector>
 
+#include "renderer/frame.hpp"
 #include "renderer/gl/gl_context.hpp"
 #include "renderer/params.hpp"
 #include "renderer/passes/ao_uniforms.hpp"
@@ -84,6 +85,20 @@ TEST(GlProbe, SoftwareRenderersAreToldFromGpusByName) {
   for (const char* gpu : {"NVIDIA H200/PCIe/SSE2", "AMD Radeon RX 7900 XTX (radeonsi, navi31)",
                           "Mesa Intel(R) UHD Graphics 630 (CFL GT2)"})
     EXPECT_FALSE(software_renderer(gpu)) << gpu;
+}
+
+// On a software renderer a pass is timed by the wall clock between two glFinish calls: its
+// device is this CPU, and llvmpipe's GL_TIME_ELAPSED charged a compute dispatch's work to no
+// pass (SAO's dispatched AO pass read 0.25 ms for 59; bench/README.md). A pass that only waits
+// reads at least its wait, where a query reads nothing. (A lower bound: never flaky.)
+TEST(PassTimer, OnASoftwareRendererAPassIsItsWallTime) {
+  shared_renderer();  // a current context
+  const auto* device = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+  if (!device || !software_renderer(device)) GTEST_SKIP() << "a GPU: passes are timed by queries";
+  PassTimer t("wait");
+  std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  t.stop();
+  EXPECT_GE(t.read().gpu_ms, 20.0);
 }
 
 TEST(Renderer, FlatUnoccludedPlaneIsWhite) {
