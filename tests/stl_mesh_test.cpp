@@ -121,13 +121,15 @@ TEST_F(StlFiles, SliversAreDroppedAndStoredNormalsIgnored) {
             std::string::npos);
 }
 
-TEST_F(StlFiles, SeveralSolidsAndUpperCaseKeywordsAreRead) {
+TEST_F(StlFiles, SeveralSolidsUpperCaseKeywordsAndIndentationAreRead) {
   std::string text = ascii_stl({kTetra[0], kTetra[1]}) + ascii_stl({kTetra[2], kTetra[3]});
   for (const char* word : {"facet", "vertex", "endloop"}) {
     for (std::size_t at = text.find(word); at != std::string::npos; at = text.find(word, at + 1))
       for (std::size_t i = 0; i < std::strlen(word); ++i) text[at + i] = char(text[at + i] - 32);
   }
   EXPECT_EQ(load_mesh(file("two.stl", text)).triangles.size(), 4u);
+  // Indented as a whole, as stl@1.1.1's teapot.stl is.
+  EXPECT_EQ(load_mesh(file("indented.stl", "  " + text)).triangles.size(), 4u);
 }
 
 TEST_F(StlFiles, EveryCutOfABinaryFileIsRefused) {
