@@ -155,7 +155,9 @@ TEST_F(StlFiles, BadFilesAreOneLineNamingTheProblem) {
       {std::string("solid x\n\0", 9), "a NUL byte at offset 8"},
       {"solid x\nfacet normal 0 0 0\nouter loop\nvertex 0 0 zero\n", ":4: 'zero' is not a valid"},
       {"solid x\nfacet normal 0 0 0\nouter loop\nvertex 1e39 0 0\n",
-       ":4: a vertex coordinate is infinite"},
+       ":4: a vertex coordinate is NaN or infinite"},
+      {"solid x\nfacet normal 0 0 0\nouter loop\nvertex nan 0 0\n",
+       ":4: a vertex coordinate is NaN"},
       {"solid x\nfacet normal 0 0 0\ninner loop\n", ":3: 'inner' where 'outer' was expected"},
       {"solid x\nendsolid x\nrubbish\n", ":3: 'rubbish' where 'solid' was expected"},
   };

@@ -85,7 +85,7 @@ std::vector<Triangle> ascii_triangles(std::string_view name, std::string_view te
           corner[k] = static_cast<float>(in.number<double>(
               [&] { return fmt::format("vertex coordinate of triangle {}", out.size()); }));
         }
-        if (!finite(corner)) in.fail("a vertex coordinate is infinite as a float");
+        if (!finite(corner)) in.fail("a vertex coordinate is NaN or infinite (as a float)");
       }
       expect("endloop"), expect("endfacet");
     }
