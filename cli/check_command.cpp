@@ -471,12 +471,11 @@ int run_bless(const HarnessArgs& given) {
 // The merged report's verdict, printed and written as a run's is.
 int run_merge(const std::string& out, const std::vector<std::string>& shards,
               const std::string& junit, bool partial, bool wait, const std::string& annotations) {
-  const hs::RunResults merged = hs::merge_reports(out, shards, partial, wait);
-  if (const std::string_view prefix = "partial, missing "; merged.shard.starts_with(prefix)) {
-    fmt::print(stderr, "report merge: a partial run: {} missing\n",
-               merged.shard.substr(prefix.size()));
+  const hs::MergedReport merged = hs::merge_reports(out, shards, partial, wait);
+  if (!merged.missing.empty()) {
+    fmt::print(stderr, "report merge: a partial run: {} missing\n", merged.missing);
   }
-  return finish(merged, out, junit, {.annotations = annotations});
+  return finish(merged.run, out, junit, {.annotations = annotations});
 }
 
 // Runs `f`, showing an error's bytes that are not printable UTF-8 escaped (a path may hold any).

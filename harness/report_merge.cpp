@@ -74,8 +74,8 @@ int shard_count(const std::vector<RunResults>& parts, const std::vector<std::str
 
 }  // namespace
 
-RunResults merge_reports(const fs::path& out, const std::vector<std::string>& shards, bool partial,
-                         bool wait) {
+MergedReport merge_reports(const fs::path& out, const std::vector<std::string>& shards,
+                           bool partial, bool wait) {
   std::vector<RunResults> parts;
   for (const std::string& dir : shards) {
     parts.push_back(read_results(dir));
@@ -132,7 +132,7 @@ RunResults merge_reports(const fs::path& out, const std::vector<std::string>& sh
     }
   }
   write_results(out, merged);
-  return merged;
+  return {std::move(merged), missing};
 }
 
 }  // namespace aosuite::harness

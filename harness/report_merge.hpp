@@ -18,7 +18,11 @@ namespace aosuite::harness {
 // `wait`), copies the case folders (each file under a temporary name, then renamed) and writes
 // the merged results.json, whose approve command points at `out`. Throws std::runtime_error
 // naming the folder at fault, with nothing written.
-RunResults merge_reports(const std::filesystem::path& out, const std::vector<std::string>& shards,
-                         bool partial, bool wait);
+struct MergedReport {
+  RunResults run;
+  std::string missing;  // the shards a partial run lacks, "i/n, ..."; empty when it is whole
+};
+MergedReport merge_reports(const std::filesystem::path& out, const std::vector<std::string>& shards,
+                           bool partial, bool wait);
 
 }  // namespace aosuite::harness
