@@ -103,9 +103,18 @@ Program make_pixel_program(const char* file, int rows) {
                                   "\n#define PIXEL_ROWS " + std::to_string(rows) + "\n");
 }
 
-int dispatch_shares() {
+namespace {
+
+// Whether the current context renders on this CPU (llvmpipe, softpipe): a software renderer.
+bool device_is_cpu() {
   const auto* device = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
-  if (!device || !software_renderer(device)) return 1;
+  return device && software_renderer(device);
+}
+
+}  // namespace
+
+int dispatch_shares() {
+  if (!device_is_cpu()) return 1;
   long threads = std::thread::hardware_concurrency();
   if (const char* env = std::getenv("LP_NUM_THREADS"); env && *env) {
     threads = std::strtol(env, nullptr, 10);  // as Mesa reads it
@@ -135,11 +144,6 @@ void dispatch_pixels(GLuint program, std::initializer_list<std::pair<GLuint, GLe
 }
 
 namespace {
-
-bool device_is_cpu() {
-  const auto* device = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
-  return device && software_renderer(device);
-}
 
 double ms_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
