@@ -13,9 +13,8 @@
 uniform sampler2D u_depth;
 uniform sampler2D u_normal;
 #include "ao_uniforms.glsl"  // u_thickness: a share of u_radius; u_contrast: final power
-#include "slice_sampling.glsl"  // slice_and_step_noise, step_distance: GTAO's
+#include "slice_sampling.glsl"  // GTAO's kPi, noise, step_distance, make_slice
 
-const float kPi = 3.14159265;
 const int kSectors = 32;  // one uint per slice, as in the paper
 
 // The slice's cosine-weighted measure between the view vector (theta = 0) and theta, for the
@@ -78,18 +77,10 @@ float estimate_ao(ivec2 p) {
   int slices = max(u_slices, 1), steps = max(u_steps, 1);
   float visible = 0.0, total = 0.0;  // cosine-weighted measures, summed over the slices
   for (int slice = 0; slice < slices; ++slice) {
-    float phi = (float(slice) + noise.x) / float(slices) * kPi;
-    vec2 omega = vec2(cos(phi), sin(phi));
-    vec3 direction = vec3(omega, 0.0);
-    vec3 ortho_direction = direction - dot(direction, view) * view;
-    vec3 axis = safe_normalize(cross(ortho_direction, view));
-    vec3 projected_normal = normal - axis * dot(normal, axis);
-    float projected_length = length(projected_normal);
-    if (projected_length < 1e-6) continue;  // the normal along the slice axis: no arc
-    float sign_n = dot(ortho_direction, projected_normal) >= 0.0 ? 1.0 : -1.0;
-    float cos_n = clamp(dot(projected_normal, view) / projected_length, 0.0, 1.0);
-    float n = sign_n * acos(cos_n);  // the projected normal's angle from the view vector
-
+    Slice sl;
+    if (!make_slice(slice, slices, noise.x, view, normal, sl)) continue;
+    vec2 omega = sl.omega;
+    float n = sl.n;
     uint occluded = 0u;
     for (int step = 0; step < steps; ++step) {
       float s = step_distance(noise.y, slice, step, steps, min_s);
@@ -125,8 +116,8 @@ float estimate_ao(ivec2 p) {
                         cosine_measure(sector_angle(0, n), n);
     // No bit set subtracts exactly 0, so an open plane's ratio below is exactly 1.
     float slice_visible = slice_total - (occluded == 0u ? 0.0 : occluded_measure(occluded, n));
-    visible += projected_length * slice_visible;
-    total += projected_length * slice_total;
+    visible += sl.projected_length * slice_visible;
+    total += sl.projected_length * slice_total;
   }
   // total > 0 unless every slice was skipped; the ratio can pass 1 or 0 by rounding only.
   float visibility = total > 0.0 ? clamp(visible / total, 0.0, 1.0) : 1.0;

@@ -11,9 +11,8 @@
 uniform sampler2D u_depth;
 uniform sampler2D u_normal;
 #include "ao_uniforms.glsl"  // u_contrast is XeGTAO's FinalValuePower
-#include "slice_sampling.glsl"  // slice_and_step_noise, step_distance
+#include "slice_sampling.glsl"  // kPi, slice_and_step_noise, step_distance, make_slice
 
-const float kPi = 3.14159265;
 const float kRadiusMultiplier = 1.457;   // XeGTAO: radius as the RT reference tuned it
 const float kMinVisibility = 0.03;
 
@@ -61,18 +60,10 @@ float estimate_ao(ivec2 p) {
   vec2 noise = slice_and_step_noise(p);
   int slices = max(u_slices, 1), steps = max(u_steps, 1);
   for (int slice = 0; slice < slices; ++slice) {
-    float phi = (float(slice) + noise.x) / float(slices) * kPi;
-    // Screen rows run up here as view-space y does, so one direction serves both.
-    vec2 omega = vec2(cos(phi), sin(phi));
-    vec3 direction = vec3(omega, 0.0);
-    vec3 ortho_direction = direction - dot(direction, view) * view;
-    vec3 axis = safe_normalize(cross(ortho_direction, view));
-    vec3 projected_normal = normal - axis * dot(normal, axis);
-    float projected_length = length(projected_normal);
-    if (projected_length < 1e-6) continue;  // the normal along the slice axis: no arc
-    float sign_n = dot(ortho_direction, projected_normal) >= 0.0 ? 1.0 : -1.0;
-    float cos_n = clamp(dot(projected_normal, view) / projected_length, 0.0, 1.0);
-    float n = sign_n * acos(cos_n);  // the projected normal's angle from the view vector
+    Slice sl;
+    if (!make_slice(slice, slices, noise.x, view, normal, sl)) continue;
+    vec2 omega = sl.omega;
+    float cos_n = sl.cos_n, n = sl.n;
     // Below the tangent plane nothing can occlude: the horizons start there.
     float low_cos0 = cos(n + 0.5 * kPi), low_cos1 = cos(n - 0.5 * kPi);
     float horizon_cos0 = low_cos0, horizon_cos1 = low_cos1;
@@ -106,7 +97,7 @@ float estimate_ao(ivec2 p) {
     float arc0 = (cos_n + 2.0 * h0 * sin(n) - cos(2.0 * h0 - n)) * 0.25;
     float arc1 = (cos_n + 2.0 * h1 * sin(n) - cos(2.0 * h1 - n)) * 0.25;
     // XeGTAO's fudge: mix(|n_p|, 1, 0.05) tracks its ray-traced reference better.
-    float weight = mix(projected_length, 1.0, 0.05);
+    float weight = mix(sl.projected_length, 1.0, 0.05);
     visible += weight * (arc0 + arc1);
     // The same arcs with both horizons on the tangent plane, h = n -+ pi/2 (eq. 10).
     open += weight * (cos_n + n * sin(n));
