@@ -11,6 +11,7 @@
 #include <stddef.h>
 #include <stdio.h>
 #include <jpeglib.h>
+#include <jerror.h>  // JWRN_JPEG_EOF
 // clang-format on
 #include <webp/decode.h>
 
@@ -65,7 +66,22 @@ struct JpegError {
   std::longjmp(e->back, 1);
 }
 
-void jpeg_quiet(j_common_ptr, int) {}  // warnings (a truncated file still decodes) unprinted
+// Warnings go unprinted, but one is fatal: libjpeg decodes a cut file to the end by padding it
+// with grey, and Pillow refuses it ("image file is truncated"), so aosuite does too.
+void jpeg_warn(j_common_ptr cinfo, int level) {
+  if (level < 0 && cinfo->err->msg_code == JWRN_JPEG_EOF) jpeg_fail(cinfo);
+}
+
+// Reads every scanline and drops it: a CMYK or YCCK file left to OpenImageIO, which pads a cut
+// one silently, is first read through to its end here, so jpeg_warn sees the cut.
+void read_through(jpeg_decompress_struct& cinfo) {
+  cinfo.out_color_space = JCS_CMYK;
+  jpeg_start_decompress(&cinfo);
+  JSAMPARRAY row = (*cinfo.mem->alloc_sarray)(reinterpret_cast<j_common_ptr>(&cinfo), JPOOL_IMAGE,
+                                              cinfo.output_width * 4, 1);
+  while (cinfo.output_scanline < cinfo.output_height) jpeg_read_scanlines(&cinfo, row, 1);
+  jpeg_finish_decompress(&cinfo);
+}
 
 }  // namespace
 
@@ -78,7 +94,7 @@ int read_jpeg(const unsigned char* bytes, std::size_t size, Allocate allocate, v
   JpegError err;
   cinfo.err = jpeg_std_error(&err.mgr);
   err.mgr.error_exit = jpeg_fail;
-  err.mgr.emit_message = jpeg_quiet;
+  err.mgr.emit_message = jpeg_warn;
   err.message[0] = 0;
   if (setjmp(err.back)) {
     jpeg_destroy_decompress(&cinfo);
@@ -89,6 +105,7 @@ int read_jpeg(const unsigned char* bytes, std::size_t size, Allocate allocate, v
   jpeg_mem_src(&cinfo, bytes, static_cast<unsigned long>(size));
   jpeg_read_header(&cinfo, TRUE);
   if (cinfo.jpeg_color_space == JCS_CMYK || cinfo.jpeg_color_space == JCS_YCCK) {
+    read_through(cinfo);
     jpeg_destroy_decompress(&cinfo);
     return kNotMine;
   }

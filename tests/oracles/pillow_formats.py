@@ -204,7 +204,17 @@ def main():
         # formats aosuite reads; exit 2.
         (out / "notes.jpg").write_text("not a JPEG")
         (out / "cut.jpg").write_bytes(made[0][0].read_bytes()[:200])
-        for bad, said in (("notes.jpg", "not an image: no signature"), ("cut.jpg", "JPEG")):
+        # Cut inside the scan data, where libjpeg pads with grey and only warns, and Pillow
+        # refuses it ("image file is truncated"); the CMYK one is OpenImageIO's to decode.
+        whole = made[0][0].read_bytes()
+        (out / "half.jpg").write_bytes(whole[:len(whole) // 2])
+        cmyk = np.dstack([image(rng, 40, 50, 3, 255), image(rng, 40, 50, 1, 255)])
+        Image.fromarray(cmyk.astype(np.uint8), "CMYK").save(out / "cmyk.jpg", quality=90)
+        whole = (out / "cmyk.jpg").read_bytes()
+        (out / "half_cmyk.jpg").write_bytes(whole[:len(whole) // 2])
+        for bad, said in (("notes.jpg", "not an image: no signature"), ("cut.jpg", "JPEG"),
+                          ("half.jpg", "Premature end of JPEG file"),
+                          ("half_cmyk.jpg", "Premature end of JPEG file")):
             run = subprocess.run([binary, "compare", str(out / bad), str(made[0][0])],
                                  capture_output=True, text=True, check=False)
             if run.returncode != 2 or run.stderr.count("\n") != 1 \
