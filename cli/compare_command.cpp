@@ -18,6 +18,7 @@
 
 #include "cli/commands.hpp"
 #include "cli/compare_metrics.hpp"
+#include "common/file_io.hpp"
 #include "common/thread_beside.hpp"
 #include "compare/band_compare.hpp"
 #include "compare/resemble.hpp"
@@ -201,11 +202,12 @@ void check_budget(const std::string& a, std::span<const unsigned char> bytes_a,
 }
 
 // The one comparison of the two files (b, the second, against a, the reference) with
-// Resemble's options for its result; writes the diff image when asked. The memory budget is
-// checked before any PNG is decoded.
+// Resemble's options for its result; stages the diff image when asked (the caller commits its
+// outputs together). The memory budget is checked before any PNG is decoded.
 comparison::Comparison compare_pair(const std::string& a, const std::string& b, rs::Options o,
                                     const comparison::Tolerance& t, const std::string& diff_path,
-                                    bool want_heatmap, bool tool_pooling, Budget budget) {
+                                    bool want_heatmap, bool tool_pooling, Budget budget,
+                                    StagedFiles& outputs) {
   const MappedFile file_a(a, budget.bytes), file_b(b, budget.bytes);
   const auto bytes_a = file_a.bytes(), bytes_b = file_b.bytes();
   o.produce_diff = !diff_path.empty();
@@ -223,8 +225,17 @@ comparison::Comparison compare_pair(const std::string& a, const std::string& b, 
   comparison::Comparison c = comparison::run(comparison::Input::file(b, bytes_b),
                                              comparison::Input::file(a, bytes_a), t, options);
   if (o.produce_diff) {
-    if (c.diff.empty()) throw std::invalid_argument(a + ": no diff image for float images");
-    write_png_rgba8(diff_path, c.diff);
+    const auto is_float = [](const std::string& kind) { return kind.starts_with("float"); };
+    if (c.diff.empty() && (is_float(c.expected_kind) || is_float(c.actual_kind))) {
+      throw std::invalid_argument((is_float(c.expected_kind) ? a : b) +
+                                  ": no diff image for float images");
+    }
+    if (c.diff.empty()) {  // another kind of image: the verdict says why, as for the heat map
+      fmt::print(stderr, "aosuite compare: {}: no diff image written ({})\n", diff_path,
+                 c.message());
+    } else {
+      outputs.stage(diff_path, encode_png_rgba8(c.diff, 3));
+    }
   }
   return c;
 }
@@ -276,17 +287,19 @@ comparison::Tolerance tolerance_of(const CompareArgs& args, const std::string& h
 
 int run_single(const CompareArgs& args) {
   const comparison::Tolerance t = tolerance_of(args, args.heatmap);
+  StagedFiles outputs;  // the diff and the heat map, both or neither
   const comparison::Comparison c =
       compare_pair(args.a, args.b, options_from(args), t, args.diff, !args.heatmap.empty(),
-                   args.flip_pooling == "tool", budget_from(args));
+                   args.flip_pooling == "tool", budget_from(args), outputs);
   if (!args.heatmap.empty()) {
     if (c.heatmap.empty()) {  // nothing comparable was measured: the verdict says why
       fmt::print(stderr, "aosuite compare: {}: no heat map written ({})\n", args.heatmap,
                  c.message());
     } else {
-      write_png_rgba8(args.heatmap, c.heatmap);
+      outputs.stage(args.heatmap, encode_png_rgba8(c.heatmap, 3));
     }
   }
+  outputs.commit();
   if (args.json) {
     fmt::print("{}\n", json_line(c, nlohmann::ordered_json::object()));
   } else {
@@ -334,8 +347,10 @@ int run_batch(const CompareArgs& args) {
       }
       if (a.empty() || b.empty()) throw std::invalid_argument("needs both 'a' and 'b'");
       extra["a"] = a, extra["b"] = b;
+      StagedFiles outputs;
       const comparison::Comparison c =
-          compare_pair(a, b, o, t, diff, false, args.flip_pooling == "tool", budget);
+          compare_pair(a, b, o, t, diff, false, args.flip_pooling == "tool", budget, outputs);
+      outputs.commit();
       fmt::print("{}\n", json_line(c, extra));
       if (!c.same()) worst = std::max(worst, kExitDifferent);
     } catch (const std::exception& e) {

@@ -179,7 +179,12 @@ MappedFile::~MappedFile() {
   if (mapped_ && data_) ::munmap(const_cast<unsigned char*>(data_), size_);
 }
 
-void write_file_atomic(const std::filesystem::path& path, std::span<const unsigned char> bytes) {
+namespace {
+
+// Writes `bytes` to a new temporary beside `path`, with the permissions a plain create would
+// give, and syncs it; returns its name. Nothing is left behind when it throws.
+std::string write_temporary(const std::filesystem::path& path,
+                            std::span<const unsigned char> bytes) {
   const std::filesystem::path dir = path.has_parent_path() ? path.parent_path() : ".";
   std::string tmp = (dir / fmt::format(".{}.tmp-XXXXXX", path.filename().string())).string();
   Fd f{::mkstemp(tmp.data())};
@@ -206,7 +211,37 @@ void write_file_atomic(const std::filesystem::path& path, std::span<const unsign
     abandon("cannot close");
   }
   f.fd = -1;
-  if (::rename(tmp.c_str(), path.c_str()) != 0) abandon("cannot rename into place");
+  return tmp;
+}
+
+void rename_into_place(const std::string& tmp, const std::filesystem::path& path) {
+  if (::rename(tmp.c_str(), path.c_str()) != 0) {
+    const int saved = errno;
+    ::unlink(tmp.c_str());
+    errno = saved;
+    fail_errno(path, "cannot rename into place");
+  }
+}
+
+}  // namespace
+
+void write_file_atomic(const std::filesystem::path& path, std::span<const unsigned char> bytes) {
+  rename_into_place(write_temporary(path, bytes), path);
+}
+
+StagedFiles::~StagedFiles() {
+  for (const auto& [path, tmp] : staged_) ::unlink(tmp.c_str());
+}
+
+void StagedFiles::stage(const std::filesystem::path& path, std::span<const unsigned char> bytes) {
+  staged_.emplace_back(path, write_temporary(path, bytes));
+}
+
+void StagedFiles::commit() {
+  while (!staged_.empty()) {
+    rename_into_place(staged_.front().second, staged_.front().first);
+    staged_.erase(staged_.begin());
+  }
 }
 
 void write_text(const std::filesystem::path& path, std::string_view text) {

@@ -7,6 +7,7 @@
 #include <span>
 #include <stdexcept>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace aosuite {
@@ -67,5 +68,21 @@ class MappedFile {
 void write_file_atomic(const std::filesystem::path& path, std::span<const unsigned char> bytes);
 // Text via write_file_atomic.
 void write_text(const std::filesystem::path& path, std::string_view text);
+
+// Several files written all or none: each stage() writes a complete temporary beside its path,
+// commit() renames them into place, and whatever was not committed (an error on the way, a later
+// stage that failed) is removed, so a command that fails leaves none of its outputs behind.
+class StagedFiles {
+ public:
+  StagedFiles() = default;
+  StagedFiles(const StagedFiles&) = delete;
+  StagedFiles& operator=(const StagedFiles&) = delete;
+  ~StagedFiles();
+  void stage(const std::filesystem::path& path, std::span<const unsigned char> bytes);
+  void commit();
+
+ private:
+  std::vector<std::pair<std::filesystem::path, std::string>> staged_;  // path, its temporary
+};
 
 }  // namespace aosuite

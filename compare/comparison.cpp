@@ -97,6 +97,9 @@ class Side {
     }
     return kind_of(picture());
   }
+  // Decodes it whole, so a file cut or corrupt past its header is an error (FileError) before
+  // a verdict read from its header alone ("another size or kind") could hide it.
+  void check() { png() ? static_cast<void>(rgba8()) : static_cast<void>(picture()); }
   bool is_float() {
     if (png()) return false;  // a 16-bit PNG is compared as a canvas holds it, and by metrics
     return picture().is_float && !picture().floats.srgb;
@@ -428,6 +431,7 @@ Comparison run(const Input& actual_in, const Input& expected_in, const Tolerance
   c.expected_kind = expected.kind(), c.actual_kind = actual.kind();
   const bool is_float = expected.is_float() || actual.is_float();
   if (c.expected_kind != c.actual_kind && !t.allow_kind_change) {
+    expected.check(), actual.check();
     different_shape(c, fmt::format("expected is {}, actual is {} (allow_kind_change = true "
                                    "accepts another bit depth or layout)",
                                    c.expected_kind, c.actual_kind));
@@ -445,11 +449,10 @@ Comparison run(const Input& actual_in, const Input& expected_in, const Tolerance
     c.largest = float_difference(e.floats, a.floats, o.counted);
     const std::vector<metric::Gates> gates = t.gates_for(true);
     if (std::ranges::none_of(gates, [](const metric::Gates& g) { return !g.limits.empty(); })) {
-      // Nothing allows a difference: float images with no limit are compared byte for byte,
-      // files as files (above) and an image in memory (the C++ API's, Python's) by its samples'
-      // bits, which are all it has.
-      const bool in_memory = actual_in.bytes.empty() || expected_in.bytes.empty();
-      if (in_memory && std::ranges::equal(e.floats.data, a.floats.data, [](float x, float y) {
+      // Nothing allows a difference: float images with no limit must hold the same samples,
+      // bit for bit, whatever their files' compression or metadata (a lossless re-encode
+      // passes, as it does for 8-bit images), files and images in memory alike.
+      if (std::ranges::equal(e.floats.data, a.floats.data, [](float x, float y) {
             return std::bit_cast<std::uint32_t>(x) == std::bit_cast<std::uint32_t>(y);
           })) {
         c.comparable = true;
@@ -458,8 +461,8 @@ Comparison run(const Input& actual_in, const Input& expected_in, const Tolerance
       }
       c.verdict = Verdict::kDifferent;
       c.failed = {
-          "the float images differ (with no metric gate, float images are compared "
-          "byte for byte: give one, e.g. flip.max_mean=0.02)"};
+          "the float images differ (with no metric gate, float images must hold the same "
+          "samples, bit for bit: give one, e.g. flip.max_mean=0.02)"};
       return c;
     }
     c.comparable = true;
@@ -476,6 +479,7 @@ Comparison run(const Input& actual_in, const Input& expected_in, const Tolerance
   };
   const ImageSize es = size_of(expected), as = size_of(actual);
   if (es.width != as.width || es.height != as.height) {
+    expected.check(), actual.check();
     different_shape(c, fmt::format("expected is {}x{}, actual is {}x{}", es.width, es.height,
                                    as.width, as.height));
     if (o.resemble_options)

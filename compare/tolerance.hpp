@@ -74,7 +74,7 @@ struct Tolerance {
   std::vector<metric::Gates> gates;  // e.g. flip = { max_mean = 0.02 }: beside the above
   // Gates only for float images (EXR, HDR, float TIFF, 16-bit PNG at full precision), which
   // have no Resemble gate: folder mode's --float-gate, a suite's `[tolerance.float]`. Float
-  // images with no gate at all are compared byte for byte.
+  // images with no gate at all are compared sample for sample, bit for bit.
   std::vector<metric::Gates> float_gates;
   // Percentages and means over the pixels the case's "foreground" image marks (a rendered
   // scene's geometry), so sky does not dilute them. Only for kinds that keep such an image.

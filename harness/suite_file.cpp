@@ -403,7 +403,7 @@ Case image_case(const Reader& r, const fs::path& dir, const toml::table& t, Comm
     }
   }
   // Each image keeps its file type: 8-bit ones are judged by Resemble and the metrics, 16-bit
-  // and float ones by the metrics ([tolerance.float]), else byte for byte. One render written
+  // and float ones by the metrics ([tolerance.float]), else sample for sample. One render written
   // as frame.png and frame.exr is two images, named apart by their types: frame_png, frame_exr.
   const std::vector<std::string>& names =
       command ? src->outputs : std::vector<std::string>(src->files.begin(), src->files.end());

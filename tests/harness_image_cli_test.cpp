@@ -1400,7 +1400,7 @@ TEST_F(ImageCases, FolderModeReportsChangedNewAndDeletedAndBlessAcceptsThem) {
     fs::copy_file(from, dir_ / to);
   }
   std::ofstream(dir_ / "actual" / "notes.txt") << "not an image";
-  // EXR files are paired too, and without a float gate compared byte for byte.
+  // EXR files are paired too, and without a float gate compared sample for sample.
   test::write_exr(dir_ / "actual" / "depth.exr", 2, 1, {"Y"}, {0.5f, 1.0f});
   test::write_exr(dir_ / "expected" / "depth.exr", 2, 1, {"Y"}, {0.5f, 2.0f});
   test::write_exr(dir_ / "actual" / "sub" / "same.exr", 2, 1, {"Y"}, {0.5f, 1.0f});

@@ -474,5 +474,39 @@ TEST(MetricCli, BadInputIsOneLineAndWritesNothing) {
   }
 }
 
+TEST(MetricCli, OutputsAreWrittenAllOrNoneAndAKindChangeStaysAVerdict) {
+  test::TempDir dir;
+  write_png_rgba8(dir / "a.png", cv::Mat(4, 4, CV_8UC4, cv::Scalar::all(9)));
+  write_png_rgba8(dir / "b.png", cv::Mat(4, 4, CV_8UC4, cv::Scalar::all(90)));
+  const std::vector<unsigned char> row(8, 0x40);  // 16-bit grey, 4 pixels
+  const std::vector<unsigned char> g16 = test::make_png(4, 4, 16, 0, {row, row, row, row});
+  test::write_bytes(dir / "g16.png", g16);
+  test::write_bytes(dir / "cut16.png",
+                    std::vector<unsigned char>(g16.begin(), g16.begin() + long(g16.size()) - 20));
+  auto p = [&](const char* name) { return (dir / name).string(); };
+  const fs::path diff = dir / "diff.png";
+  // The heat map cannot be written: the diff, which could, is not left behind either.
+  Outcome r = compare(dir, p("a.png") + " " + p("b.png") + " --metric flip --diff " +
+                               diff.string() + " --heatmap " + (dir / "no" / "h.png").string());
+  EXPECT_EQ(r.rc, 2) << r.out;
+  EXPECT_FALSE(fs::exists(diff));
+  for (const fs::directory_entry& e : fs::directory_iterator(dir.path()))
+    EXPECT_FALSE(e.path().filename().string().starts_with(".")) << "left: " << e.path();
+  // Asking for a diff does not turn another bit depth into an error: the same verdict and
+  // words as without it, and a note that no diff was written.
+  for (const std::string& extra : {std::string(), " --diff " + diff.string()}) {
+    SCOPED_TRACE(extra);
+    r = compare(dir, p("a.png") + " " + p("g16.png") + extra);
+    EXPECT_EQ(r.rc, 1) << r.err;
+    EXPECT_NE(r.out.find("expected is 8-bit, actual is 16-bit grey"), std::string::npos) << r.out;
+    EXPECT_FALSE(fs::exists(diff));
+  }
+  // A 16-bit PNG cut short is bad input even where its header alone says another kind.
+  r = compare(dir, p("cut16.png") + " " + p("a.png"));
+  EXPECT_EQ(r.rc, 2) << r.out;
+  EXPECT_NE(r.err.find("cut16.png: "), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+}
+
 }  // namespace
 }  // namespace aosuite

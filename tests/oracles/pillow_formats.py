@@ -140,6 +140,12 @@ def main():
         got = batch(binary, [(floats[0][0], floats[1][0])], "--metric", "rmse")[0]["rmse"]["value"]
         if abs(got - want) > 1e-12 * max(1.0, want):
             failures.append(f"float TIFF RMSE {got} != numpy's {want}")
+        # The same floats, compressed: the same samples, so the same image with no gate at all.
+        Image.open(floats[0][0]).save(out / "float_lzw.tif", compression="tiff_lzw")
+        run = subprocess.run([binary, "compare", str(floats[0][0]), str(out / "float_lzw.tif")],
+                             capture_output=True, text=True, check=False)
+        if run.returncode != 0:
+            failures.append(f"float TIFF re-encoded with LZW: exit {run.returncode}, {run.stdout}")
         # 4. Radiance HDR (Pillow writes none): flat RGBE scanlines, decoded as Radiance's
         # rgbe.c does, m * 2^(e - 136).
         hdr = []
