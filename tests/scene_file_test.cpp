@@ -8,6 +8,7 @@
 #include <toml++/toml.h>
 
 #include <algorithm>
+#include <bit>
 #include <cctype>
 #include <chrono>
 #include <cstdlib>
@@ -147,6 +148,26 @@ TEST_F(MeshFiles, PlyAsciiAndBinaryOfBothByteOrdersAgree) {
     const Mesh binary = load_mesh(file(big ? "be.ply" : "le.ply", tetra_binary_ply(big)));
     EXPECT_EQ(binary.positions, ascii.positions);
     EXPECT_EQ(binary.triangles, ascii.triangles);
+  }
+}
+
+// Whatever the first data byte, as either line end after end_header: assimp 5.2 took a first
+// byte \n after a bare \n for a second line end and read every value one byte late.
+TEST_F(MeshFiles, BinaryPlyReadsWhateverItsFirstDataByte) {
+  for (const char* eol : {"\n", "\r\n"}) {
+    for (unsigned first = 0; first < 256; ++first) {
+      SCOPED_TRACE(
+          fmt::format("first byte {}, header line end {}", first, eol[0] == '\r' ? "CRLF" : "LF"));
+      std::string s = tetra_binary_ply(false);
+      const float x = std::bit_cast<float>(0x3f000000u | first);  // 0.5 and the byte
+      s.replace(s.find("end_header\n") + 11, 4, reinterpret_cast<const char*>(&x), 4);
+      if (eol[0] == '\r') s.replace(s.find("end_header\n"), 11, "end_header\r\n");
+      const Mesh m = load_mesh(file("first.ply", s));
+      ASSERT_EQ(m.triangles.size(), 4u);
+      EXPECT_EQ(m.positions[0], glm::vec3(x, 0, 0));
+      for (int i = 1; i < 4; ++i)
+        EXPECT_EQ(m.positions[i], glm::vec3(kTetra[i][0], kTetra[i][1], kTetra[i][2]));
+    }
   }
 }
 

@@ -268,6 +268,17 @@ void check_ply(std::string_view name, std::span<const unsigned char> bytes) {
   check_ply_binary(name, h, bytes);
 }
 
+void mend_ply_header_end(std::string_view name, std::vector<unsigned char>& bytes) {
+  Tokens in(name, as_text(bytes));
+  const PlyHeader h = parse_ply_header(in);
+  const std::size_t end = h.body - 1;  // end_header's newline
+  if (h.format == PlyFormat::kAscii || h.body >= bytes.size() || bytes[h.body] != '\n' ||
+      (end > 0 && bytes[end - 1] == '\r')) {
+    return;
+  }
+  bytes.insert(bytes.begin() + long(end), '\r');
+}
+
 // OFF as assimp 5.2 reads it: the header as tokens ([ST][C][N][4][n]OFF, the dimension for
 // nOFF, then the vertex, face and edge counts; '#' comments between them), then one vertex or
 // face per line, where a line ends at \n, \r or \f, empty lines are skipped, '#' starts no

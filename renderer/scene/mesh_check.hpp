@@ -6,6 +6,7 @@
 
 #include <span>
 #include <string_view>
+#include <vector>
 
 namespace aosuite::renderer {
 
@@ -13,5 +14,11 @@ namespace aosuite::renderer {
 // not a complete, well-formed file of that format.
 void check_ply(std::string_view name, std::span<const unsigned char> bytes);
 void check_off(std::string_view name, std::span<const unsigned char> bytes);
+
+// assimp 5.2 reads a binary PLY's first data byte as a second line end when it is \n and the
+// header ends in a bare \n, so every value after it is read one byte late (a valid file refused,
+// "index out of range", one in 256 by the first coordinate's low byte). It reads \r\n right:
+// this ends such a header so. `bytes` must have passed check_ply.
+void mend_ply_header_end(std::string_view name, std::vector<unsigned char>& bytes);
 
 }  // namespace aosuite::renderer

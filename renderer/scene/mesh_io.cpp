@@ -88,7 +88,10 @@ std::string mesh_format(const std::filesystem::path& path) {
 Mesh parse_mesh(const std::filesystem::path& path, const std::string& ext,
                 std::vector<unsigned char> bytes) {
   if (ext == ".stl") return read_stl(path.string(), bytes);
-  if (ext == ".ply") check_ply(path.string(), bytes);
+  if (ext == ".ply") {
+    check_ply(path.string(), bytes);
+    mend_ply_header_end(path.string(), bytes);
+  }
   if (ext == ".off") check_off(path.string(), bytes);
   if (ext == ".obj") {
     // OBJ is text: a NUL byte means it is not one.
