@@ -123,11 +123,12 @@ TEST_F(StlFiles, SliversAreDroppedAndStoredNormalsIgnored) {
 
 TEST_F(StlFiles, SeveralSolidsUpperCaseKeywordsAndIndentationAreRead) {
   std::string text = ascii_stl({kTetra[0], kTetra[1]}) + ascii_stl({kTetra[2], kTetra[3]});
-  for (const char* word : {"facet", "vertex", "endloop"}) {
+  for (const char* word : {"solid", "facet", "vertex", "endloop"}) {
     for (std::size_t at = text.find(word); at != std::string::npos; at = text.find(word, at + 1))
       for (std::size_t i = 0; i < std::strlen(word); ++i) text[at + i] = char(text[at + i] - 32);
   }
   EXPECT_EQ(load_mesh(file("two.stl", text)).triangles.size(), 4u);
+  EXPECT_EQ(text.rfind("SOLID", 0), 0u) << "the first keyword is in capitals too";
   // Indented as a whole, as stl@1.1.1's teapot.stl is.
   EXPECT_EQ(load_mesh(file("indented.stl", "  " + text)).triangles.size(), 4u);
 }

@@ -155,8 +155,10 @@ Mesh read_stl(std::string_view name, std::span<const unsigned char> bytes) {
   if (bytes.size() >= 84 && bytes.size() == 84 + std::uint64_t{50} * u32_le(bytes.data() + 80)) {
     return welded(name, binary_triangles(name, bytes));
   }
-  // Some exporters indent the whole file, "solid" too.
-  if (text.substr(std::min(text.find_first_not_of(" \t\r\n"), text.size())).starts_with("solid")) {
+  // Some exporters indent the whole file, "solid" too, or write it in capitals.
+  const std::string_view start =
+      text.substr(std::min(text.find_first_not_of(" \t\r\n"), text.size()));
+  if (keyword(start.substr(0, 5), "solid")) {
     if (const std::size_t nul = text.find('\0'); nul != std::string_view::npos) {
       fail(name, fmt::format("a NUL byte at offset {} in an ASCII STL (or a binary one whose "
                              "size does not match its triangle count)",
