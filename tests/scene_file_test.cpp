@@ -231,6 +231,20 @@ TEST_F(MeshFiles, DegenerateTrianglesAreKeptHarmless) {
   expect_unit_normals(m);
   expect_near(m.normals[2], {0, 1, 0});  // used only by the sliver: the documented fallback
   expect_near(m.normals[3], {0, 0, 1});
+  // Nothing but such triangles draws nothing: refused, in every format, as in STL.
+  const std::string flat = "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 3 0 0\nf 1 2 3\nf 2 3 4\nf 1 1 2\n";
+  for (const fs::path& p : {file("line.obj", flat), file("line.off",
+                                                         "OFF\n4 2 0\n0 0 0\n1 0 0\n2 0 0\n3 0 0\n"
+                                                         "3 0 1 2\n3 1 2 3\n")}) {
+    SCOPED_TRACE(p.string());
+    try {
+      load_mesh(p);
+      ADD_FAILURE() << "accepted";
+    } catch (const FileError& e) {
+      expect_clean_message(e.what(), p);
+      EXPECT_NE(std::string(e.what()).find("no triangle has an area"), std::string::npos);
+    }
+  }
 }
 
 TEST_F(MeshFiles, NonFinitePositionsAreRefused) {

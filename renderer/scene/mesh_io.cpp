@@ -127,6 +127,14 @@ Mesh parse_mesh(const std::filesystem::path& path, const std::string& ext,
   for (unsigned i = 0; i < scene->mNumMeshes; ++i)
     append_mesh(merged, triangles_of(*scene->mMeshes[i]));
   if (merged.triangles.empty()) fail(path, "no triangles");
+  // Degenerate triangles beside real ones draw nothing and are kept; a mesh of nothing else
+  // would draw nothing at all, so it is refused, as an STL file of them is (stl_mesh.cpp).
+  const auto has_area = [&](const glm::uvec3& t) {
+    const glm::dvec3 a(merged.positions[t.x]), b(merged.positions[t.y]), c(merged.positions[t.z]);
+    return glm::dot(glm::cross(b - a, c - a), glm::cross(b - a, c - a)) > 0;
+  };
+  if (std::none_of(merged.triangles.begin(), merged.triangles.end(), has_area))
+    fail(path, "no triangle has an area: every one has its corners on a line or at one point");
   return merged;
 }
 
