@@ -171,6 +171,37 @@ TEST_F(MeshFiles, BinaryPlyReadsWhateverItsFirstDataByte) {
   }
 }
 
+// Scans come in any unit: the same cube 1e-30 to 1e30 units wide, fitted to one unit, is the
+// same mesh, corners and normals. Before, assimp's weld joined corners of one 1e-6 wide, and
+// normals fell back to +y where their squared lengths overflowed (1e15 wide) or underflowed.
+TEST_F(MeshFiles, TheSameShapeAtAnyScaleIsTheSameMeshFitted) {
+  const float cube[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
+                            {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+  const char* faces =
+      "f 1 3 2\nf 1 4 3\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 5\nf 4 8 7\nf 4 7 3\nf 1 5 8\n"
+      "f 1 8 4\nf 2 3 7\nf 2 7 6\n";
+  auto fitted = [&](double scale) {
+    std::string obj;
+    for (const auto& v : cube)
+      obj += fmt::format("v {} {} {}\n", v[0] * scale, v[1] * scale, v[2] * scale);
+    Mesh m = load_mesh(file(fmt::format("cube{}.obj", scale), obj + faces));
+    place_mesh(m, {.fit = 1.0f});
+    return m;
+  };
+  const Mesh unit = fitted(1);
+  ASSERT_EQ(unit.positions.size(), 8u);
+  for (const double scale : {1e-30, 1e-15, 1e-8, 1e-6, 2e-6, 1e-4, 1e15, 1e30}) {
+    SCOPED_TRACE(scale);
+    const Mesh m = fitted(scale);
+    ASSERT_EQ(m.positions.size(), 8u) << "corners joined";
+    ASSERT_EQ(m.triangles, unit.triangles);
+    for (std::size_t i = 0; i < 8; ++i) {
+      expect_near(m.positions[i], unit.positions[i], 1e-6f);
+      expect_near(m.normals[i], unit.normals[i], 1e-6f);
+    }
+  }
+}
+
 // From bytes already read (a pinned scene file's, hashed): the path only names the file and its
 // format, and is never opened, so what was hashed is what is parsed.
 TEST_F(MeshFiles, BytesAlreadyReadAreParsedWithoutOpeningThePath) {

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <glm/glm.hpp>
+#include <span>
 #include <vector>
 
 namespace aosuite::renderer {
@@ -16,6 +17,11 @@ struct Mesh {
   // viewpoint sphere a 40 m plane would swallow.
   bool ground = false;
 };
+
+// The power of two that brings the largest finite |component| of `values` to [1, 2) (1 when
+// all are 0): scaling by it is exact, so a computation scaled by it gives the same bits, out of
+// reach of float's overflow and underflow.
+float unit_scale(std::span<const glm::vec3> values);
 
 // Area-weighted vertex normals; zero-area triangles contribute nothing and a vertex with no
 // usable triangle gets +y, so no NaN ever reaches the G-buffer.

@@ -45,12 +45,14 @@ std::vector<glm::vec3> usable_normals(const aiMesh& m) {
   return normals;
 }
 
-// One assimp mesh's triangles (its points and lines dropped) as a Mesh with normals.
-Mesh triangles_of(const aiMesh& m) {
+// One assimp mesh's triangles (its points and lines dropped) as a Mesh with normals, its
+// positions multiplied by `unscale` (a power of two: exact).
+Mesh triangles_of(const aiMesh& m, float unscale) {
   Mesh out;
   out.positions.reserve(m.mNumVertices);
   for (unsigned i = 0; i < m.mNumVertices; ++i) {
     out.positions.emplace_back(m.mVertices[i].x, m.mVertices[i].y, m.mVertices[i].z);
+    out.positions.back() *= unscale;
   }
   for (unsigned f = 0; f < m.mNumFaces; ++f) {
     const aiFace& face = m.mFaces[f];
@@ -73,6 +75,32 @@ void drop_materials(std::vector<unsigned char>& obj) {
     for (auto at = obj.begin(); (at = std::search(at, obj.end(), w, w + word.size())) != obj.end();
          ++at)
       *at = '#';
+  }
+}
+
+// assimp 5.2's weld (aiProcess_JoinIdenticalVertices) joins distinct corners of a small mesh,
+// by a tolerance that is not relative to its size: a cube 1e-6 or 1e-8 units wide lost two of
+// its eight corners, one 1e-5 or 1e-4 wide kept them. A mesh smaller than an eighth of a unit
+// (the dragon, 0.2, is the smallest measured here) is welded scaled by the power of two that
+// brings its largest coordinate to [1, 2), so it is welded as it would be at that size; the
+// scale is undone after, exactly. Larger meshes are welded as they come, as they always were.
+float weld_scale(const aiScene& scene) {
+  float largest = 0;
+  for (unsigned i = 0; i < scene.mNumMeshes; ++i) {
+    const aiMesh& m = *scene.mMeshes[i];
+    for (unsigned v = 0; v < m.mNumVertices; ++v) {
+      largest = std::max({largest, std::abs(m.mVertices[v].x), std::abs(m.mVertices[v].y),
+                          std::abs(m.mVertices[v].z)});
+    }
+  }
+  return largest > 0 && largest < 0.125f ? std::ldexp(1.0f, -std::ilogb(largest)) : 1.0f;
+}
+
+void scale_positions(const aiScene& scene, float scale) {
+  if (scale == 1) return;
+  for (unsigned i = 0; i < scene.mNumMeshes; ++i) {
+    aiMesh& m = *scene.mMeshes[i];  // the importer's own scene, still to be post-processed
+    for (unsigned v = 0; v < m.mNumVertices; ++v) m.mVertices[v] *= scale;
   }
 }
 
@@ -120,12 +148,14 @@ Mesh parse_mesh(const std::filesystem::path& path, const std::string& ext,
   }
   // OBJ and OFF readers give every face its own vertices; welding restores shared ones so
   // computed normals are smooth. Node transforms (OBJ groups) are baked in.
+  const float scale = weld_scale(*scene);
+  scale_positions(*scene, scale);
   scene = importer.ApplyPostProcessing(aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
                                        aiProcess_PreTransformVertices);
   if (!scene) fail(path, importer.GetErrorString());
   Mesh merged;
   for (unsigned i = 0; i < scene->mNumMeshes; ++i)
-    append_mesh(merged, triangles_of(*scene->mMeshes[i]));
+    append_mesh(merged, triangles_of(*scene->mMeshes[i], 1 / scale));
   if (merged.triangles.empty()) fail(path, "no triangles");
   // Degenerate triangles beside real ones draw nothing and are kept; a mesh of nothing else
   // would draw nothing at all, so it is refused, as an STL file of them is (stl_mesh.cpp).

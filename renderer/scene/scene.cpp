@@ -103,7 +103,12 @@ std::pair<glm::vec3, glm::vec3> triangle_bounds(const Mesh& mesh) {
 }
 
 void transform_mesh(Mesh& mesh, const glm::mat4& m) {
-  const glm::mat3 normal_matrix = glm::transpose(glm::inverse(glm::mat3(m)));
+  // The inverse transpose of the linear part, scaled first to unit size (normals are made unit
+  // after, so the scale changes no bit): fitting a mesh 1e15 units wide scales by 1e-15, whose
+  // determinant, 1e-45, underflows float, and the inverse was Inf.
+  glm::mat3 linear(m);
+  linear *= unit_scale(std::span<const glm::vec3>(&linear[0], 3));
+  const glm::mat3 normal_matrix = glm::transpose(glm::inverse(linear));
   for (glm::vec3& p : mesh.positions) p = glm::vec3(m * glm::vec4(p, 1));
   for (glm::vec3& n : mesh.normals) {
     const glm::vec3 t = normal_matrix * n;
