@@ -228,6 +228,31 @@ TEST_F(MeshFiles, ObjQuadIsTriangulatedWeldedAndGetsNormals) {
   for (const glm::vec3& n : m.normals) expect_near(n, {0, 0, 1});
 }
 
+// assimp skips a vertex line it cannot read, and every later index then points one vertex on:
+// refused with the line. A byte-order mark and backslash-joined lines are read.
+TEST_F(MeshFiles, ObjVertexLinesHoldTheirNumbersOrAreRefusedWithTheLine) {
+  const std::string square = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 3 0\nf 1 2 3 4\n";
+  const Mesh plain = load_mesh(file("square.obj", square));
+  EXPECT_EQ(load_mesh(file("bom.obj", "\xEF\xBB\xBF" + square)).positions, plain.positions);
+  EXPECT_EQ(load_mesh(file("joined.obj",
+                           "v 0 0 \\\n0\r\nv +1 0 0\nv 1 1 0\nv 0 1 0\n"
+                           "f 1 2 3 4\n"))
+                .positions,
+            plain.positions);
+  for (const auto& [bad, message] : std::vector<std::pair<std::string, std::string>>{
+           {"v 1 x 0", ":2: 'x' is not a number ('v' line, value 2)"},
+           {"v 1 0", ":2: 'v' has 2 of its 3 numbers"},
+           {"vn 0 1,5 0", ":2: '1,5' is not a number ('vn' line, value 2)"},
+           {"vt", ":2: 'vt' has 0 of its 1 numbers"}}) {
+    SCOPED_TRACE(bad);
+    const fs::path p =
+        file("bad.obj", "v 0 0 0\n" + bad + "\nv 1 1 0\nv 0 1 0\nv 0 3 0\nf 1 3 4\n");
+    const std::string e = error_of([&] { load_mesh(p); });
+    expect_clean_message(e, p);
+    EXPECT_NE(e.find(message), std::string::npos) << e;
+  }
+}
+
 TEST_F(MeshFiles, ObjKeepsTheFilesOwnNormals) {
   // The file's normal points away from the geometric one: it must be kept, not recomputed.
   const Mesh m =

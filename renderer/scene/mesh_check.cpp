@@ -268,6 +268,47 @@ void check_ply(std::string_view name, std::span<const unsigned char> bytes) {
   check_ply_binary(name, h, bytes);
 }
 
+// A number as assimp's OBJ reader takes one: a float, with a sign of either kind.
+bool obj_number(std::string_view w) {
+  if (w.starts_with('+')) w.remove_prefix(1);
+  return parse<float>(w).has_value() || parse<double>(w).has_value();
+}
+
+void check_obj(std::string_view name, std::span<const unsigned char> bytes) {
+  const std::string_view text = as_text(bytes);
+  const Tokens in(name, text);
+  std::string logical;  // a line and the lines a trailing backslash joins to it
+  int first = 1, line = 0;
+  for (std::size_t pos = 0; pos < text.size();) {
+    const std::size_t end = std::min(text.find('\n', pos), text.size());
+    std::string_view l = text.substr(pos, end - pos);
+    pos = end + 1, ++line;
+    if (l.ends_with('\r')) l.remove_suffix(1);
+    if (logical.empty()) first = line;
+    if (l.ends_with('\\')) {
+      logical.append(l.substr(0, l.size() - 1)).push_back(' ');
+      if (pos < text.size()) continue;
+    } else {
+      logical.append(l);
+    }
+    const std::vector<std::string_view> w = words(logical);
+    const std::size_t needed = w.empty()                     ? 0
+                               : w[0] == "v" || w[0] == "vn" ? 3
+                               : w[0] == "vt"                ? 1
+                                                             : 0;
+    for (std::size_t k = 1; k <= needed; ++k) {
+      if (k >= w.size()) {
+        in.fail_at(first, fmt::format("'{}' has {} of its {} numbers", w[0], w.size() - 1, needed));
+      }
+      if (!obj_number(w[k])) {
+        in.fail_at(first, fmt::format("'{}' is not a number ('{}' line, value {})",
+                                      w[k].substr(0, 64), w[0], k));
+      }
+    }
+    logical.clear();
+  }
+}
+
 void mend_ply_header_end(std::string_view name, std::vector<unsigned char>& bytes) {
   Tokens in(name, as_text(bytes));
   const PlyHeader h = parse_ply_header(in);

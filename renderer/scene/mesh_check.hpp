@@ -14,6 +14,10 @@ namespace aosuite::renderer {
 // not a complete, well-formed file of that format.
 void check_ply(std::string_view name, std::span<const unsigned char> bytes);
 void check_off(std::string_view name, std::span<const unsigned char> bytes);
+// assimp 5.2 skips an OBJ `v`, `vn` or `vt` line it cannot read a number from, so every index
+// after it points one vertex further on and a wrong mesh is drawn: each such line must hold its
+// numbers (three, or one for `vt`), else this refuses the file with the line.
+void check_obj(std::string_view name, std::span<const unsigned char> bytes);
 
 // assimp 5.2 reads a binary PLY's first data byte as a second line end when it is \n and the
 // header ends in a bare \n, so every value after it is read one byte late (a valid file refused,

@@ -125,6 +125,10 @@ Mesh parse_mesh(const std::filesystem::path& path, const std::string& ext,
     // OBJ is text: a NUL byte means it is not one.
     if (const auto nul = std::find(bytes.begin(), bytes.end(), 0); nul != bytes.end())
       fail(path, fmt::format("a NUL byte at offset {}: not an OBJ text file", nul - bytes.begin()));
+    // A UTF-8 byte-order mark (Windows editors write one) is no part of the first line.
+    if (bytes.size() >= 3 && bytes[0] == 0xEF && bytes[1] == 0xBB && bytes[2] == 0xBF)
+      bytes.erase(bytes.begin(), bytes.begin() + 3);
+    check_obj(path.string(), bytes);
     drop_materials(bytes);
   }
 
