@@ -20,13 +20,15 @@ int read_bmp(const unsigned char* bytes, std::size_t size, Allocate allocate, vo
   const auto width = std::int32_t(le32(bytes + 18)), height = std::int32_t(le32(bytes + 22));
   const int planes = bytes[26] | bytes[27] << 8, bits = bytes[28] | bytes[29] << 8;
   const std::uint32_t compression = le32(bytes + 30);
-  // Uncompressed 24-bit, with a Windows info header (40 bytes or a later, longer one), rows
-  // bottom-up or top-down: what renderers write. Palettes, 16 and 32 bits, bit fields and
-  // run-length encoding: OpenImageIO.
-  if (info < 40 || planes != 1 || bits != 24 || compression != 0) return kNotMine;
+  // Uncompressed 24- or 32-bit, with a Windows info header (40 bytes or a later, longer one),
+  // rows bottom-up or top-down: what renderers write. A plain 32-bit pixel's fourth byte is
+  // reserved, not alpha (many writers leave it 0): read as RGB, as Pillow reads it (BGRX).
+  // Palettes, 16 bits, bit fields and run-length encoding: OpenImageIO.
+  if (info < 40 || planes != 1 || (bits != 24 && bits != 32) || compression != 0) return kNotMine;
   if (width <= 0 || height == 0 || height == INT32_MIN) return why = "an empty image", 1;
   const int rows = std::abs(height);
-  const std::size_t stride = (std::size_t(width) * 3 + 3) / 4 * 4;  // rows pad to 4 bytes
+  const std::size_t bpp = std::size_t(bits) / 8;
+  const std::size_t stride = (std::size_t(width) * bpp + 3) / 4 * 4;  // rows pad to 4 bytes
   if (offset > size || size - offset < stride * std::size_t(rows))
     return why = "the pixel data ends early", 1;
   auto* pixels = static_cast<unsigned char*>(allocate(user, width, rows, 3, 1));
@@ -34,7 +36,7 @@ int read_bmp(const unsigned char* bytes, std::size_t size, Allocate allocate, vo
   for (int y = 0; y < rows; ++y) {
     const unsigned char* in = bytes + offset + std::size_t(height > 0 ? rows - 1 - y : y) * stride;
     unsigned char* out = pixels + std::size_t(y) * std::size_t(width) * 3;
-    for (int x = 0; x < width; ++x, in += 3, out += 3)
+    for (int x = 0; x < width; ++x, in += bpp, out += 3)
       out[0] = in[2], out[1] = in[1], out[2] = in[0];
   }
   return 0;

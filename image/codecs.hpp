@@ -32,8 +32,8 @@ int read_hdr(const unsigned char* bytes, std::size_t size, Allocate allocate, vo
 // 16-bit, right-to-left: kNotMine).
 int read_tga(const unsigned char* bytes, std::size_t size, Allocate allocate, void* user,
              std::string& why);
-// BMP: uncompressed 24-bit, either row order (palettes, 16 or 32 bits, bit fields, RLE:
-// kNotMine).
+// BMP: uncompressed 24- or 32-bit (the fourth byte reserved, as Pillow reads it), either row
+// order (palettes, 16 bits, bit fields, RLE: kNotMine).
 int read_bmp(const unsigned char* bytes, std::size_t size, Allocate allocate, void* user,
              std::string& why);
 

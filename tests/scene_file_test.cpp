@@ -713,9 +713,11 @@ TEST_F(SceneFiles, ViewsAreRefusedAsTheRendererRefusesThem) {
   const std::string view = std::string(kView);
   EXPECT_NE(error(box + view + "near = 1e-300\n", 7).find("near is too small"), std::string::npos);
   EXPECT_NE(error(box + view + "near = 1e-40\n", 7).find("near is too small"), std::string::npos);
-  EXPECT_NE(error(box + view + "fovy_degrees = 180\n", 7).find("fovy_degrees must be in (0, 180)"),
+  EXPECT_NE(error(box + view + "fovy_degrees = 180\n", 7).find("fovy_degrees must be in [0.1, 180)"),
             std::string::npos);
   EXPECT_NE(error(box + view + "fovy_degrees = -1\n", 7).find("fovy_degrees"), std::string::npos);
+  EXPECT_NE(error(box + view + "fovy_degrees = 1e-10\n", 7).find("fovy_degrees must be in [0.1"),
+            std::string::npos);
   EXPECT_NE(error(box + "[[views]]\nname = \"v\"\neye = [1, 1, 1]\ntarget = [1, 1, 1]\n", 6)
                 .find("eye and target must differ"),
             std::string::npos);

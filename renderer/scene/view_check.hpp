@@ -16,7 +16,7 @@ struct ViewProblem {
 };
 
 // What makes `view` unrenderable, or nothing: a near plane that is not a positive normal float
-// (0, denormals and NaN make every depth 0), a field of view outside (0, 180) degrees, eye and
+// (0, denormals and NaN make every depth 0), a field of view outside [0.1, 180) degrees, eye and
 // target not finite or equal, an up that is not finite. An up parallel to the view direction is
 // renderable (make_camera picks another); scene files refuse it on their own.
 std::optional<ViewProblem> view_problem(const View& view);

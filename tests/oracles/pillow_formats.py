@@ -55,6 +55,9 @@ def cases(rng, out):
             (f"grey16_{i}.tif",
              Image.fromarray(image(rng, h, w, 1, 65535).astype(np.uint16)[:, :, 0], "I;16"), {}),
             (f"rgb_{i}.bmp", Image.fromarray(rgb), {}),
+            # 32 bits, BI_RGB: Pillow writes the alpha into the reserved byte and reads it back
+            # as RGB (BGRX).
+            (f"bgrx_{i}.bmp", Image.fromarray(rgba, "RGBA"), {}),
             (f"rgba_{i}.tga", Image.fromarray(rgba, "RGBA"), {}),
             (f"rle_{i}.tga", Image.fromarray(rgb), {"compression": "tga_rle"}),
             (f"top_{i}.tga", Image.fromarray(grey, "L"), {"orientation": 1}),
