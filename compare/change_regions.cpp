@@ -148,6 +148,17 @@ ChangedRegion classify(const Component& c, const std::vector<std::uint8_t>& chan
   }
   residual /= 3 * n;
   const auto mean_of = [&r](const double m[3]) { std::copy(m, m + 3, r.mean); };
+  // Transparency that changed more than the colour did: the colour channels cannot say it.
+  double alpha = 0, alpha_size = 0;
+  for (const std::size_t i : c.pixels) {
+    alpha += channel(a, i, 3) - channel(e, i, 3);
+    alpha_size += std::abs(channel(a, i, 3) - channel(e, i, 3));
+  }
+  if (alpha_size / n > largest) {
+    r.kind = ChangeKind::kOpacity;
+    r.mean[0] = r.mean[1] = r.mean[2] = alpha / n;
+    return r;
+  }
   const double strongest = std::max({std::abs(mean[0]), std::abs(mean[1]), std::abs(mean[2])});
 
   if (const auto [dx, dy] = shift_of(c, e, a, largest); dx != 0 || dy != 0) {
@@ -192,6 +203,8 @@ std::string_view change_kind_name(ChangeKind k) {
       return "brightness";
     case ChangeKind::kColour:
       return "colour";
+    case ChangeKind::kOpacity:
+      return "opacity";
     case ChangeKind::kAdded:
       return "added";
     case ChangeKind::kRemoved:
@@ -218,6 +231,10 @@ std::string ChangedRegion::text() const {
     case ChangeKind::kColour:
       what = fmt::format("colour change (R {:+.1f}, G {:+.1f}, B {:+.1f} levels)", mean[0], mean[1],
                          mean[2]);
+      break;
+    case ChangeKind::kOpacity:
+      what = fmt::format("more {} (alpha {:+.1f} levels)", mean[0] > 0 ? "opaque" : "transparent",
+                         mean[0]);
       break;
     case ChangeKind::kAdded:
       what = "content added";
@@ -282,7 +299,7 @@ std::vector<ChangedRegion> changed_regions(const RgbaImage& expected, const Rgba
     ChangedRegion r = classify(scattered, changed, expected, actual);
     // Scattered pixels are noise unless they all moved or changed alike.
     if (r.kind != ChangeKind::kShift && r.kind != ChangeKind::kBrightness &&
-        r.kind != ChangeKind::kColour)
+        r.kind != ChangeKind::kColour && r.kind != ChangeKind::kOpacity)
       r.kind = ChangeKind::kNoise;
     out.push_back(r);
   }

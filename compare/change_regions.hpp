@@ -14,7 +14,7 @@
 
 namespace aosuite::comparison {
 
-enum class ChangeKind { kShift, kBrightness, kColour, kAdded, kRemoved, kNoise, kOther };
+enum class ChangeKind { kShift, kBrightness, kColour, kOpacity, kAdded, kRemoved, kNoise, kOther };
 std::string_view change_kind_name(ChangeKind k);  // "shift", "brightness", "colour", ...
 
 struct ChangedRegion {
@@ -23,7 +23,8 @@ struct ChangedRegion {
   long long pixels = 0;                          // changed pixels in it
   int dx = 0, dy = 0;                            // kShift: how far the content moved
   // The mean signed difference, actual - expected, of R, G and B, in levels (kBrightness,
-  // kColour); for the others the mean largest |difference| of a pixel, in all three.
+  // kColour), or of alpha in all three (kOpacity); for the others the mean largest
+  // |difference| of a pixel's R, G, B, in all three.
   double mean[3] = {0, 0, 0};
   std::string text() const;  // "shift by (+1, 0) px, 40x12 at (10, 20)"
 };

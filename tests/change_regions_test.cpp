@@ -117,6 +117,17 @@ TEST_P(ChangeKinds, EachGeneratedKindIsNamed) {
   }
   r = largest(base, noisy);
   EXPECT_EQ(r.kind, ChangeKind::kNoise) << r.text();
+
+  // A hole cut in an RGBA render: alpha 255 -> 0, the colour kept; and faded in again.
+  RgbaImage holed = copy(base);
+  for (int y = y0; y < y0 + s; ++y) {
+    for (int x = x0; x < x0 + s; ++x)
+      holed.data()[4 * (std::size_t(y) * kW + std::size_t(x)) + 3] = 0;
+  }
+  r = largest(base, holed);
+  EXPECT_EQ(r.kind, ChangeKind::kOpacity) << r.text();
+  EXPECT_NE(r.text().find("more transparent (alpha -255.0 levels)"), std::string::npos) << r.text();
+  EXPECT_EQ(largest(holed, base).kind, ChangeKind::kOpacity);
 }
 
 INSTANTIATE_TEST_SUITE_P(Seeds, ChangeKinds, ::testing::Range(1u, 9u));
