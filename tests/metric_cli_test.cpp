@@ -169,16 +169,18 @@ TEST(MetricCli, ReadsThePairsFromFilesAsTheReferenceToolsDo) {
 
 TEST(MetricCli, SixteenBitPngsKeepTheirSixteenBits) {
   test::TempDir dir;
-  // One step of 1/65535 in every sample: invisible at 8 bits, an RMSE of exactly that at 16.
-  std::vector<std::uint16_t> a(16 * 16 * 3, 30000), b(16 * 16 * 3, 30001);
+  // One step of 1/65535 in every sample: invisible at 8 bits, an RMSE of exactly that at 16
+  // (near 1, where float's own step is largest: 0.4 % of a level, once).
+  std::vector<std::uint16_t> a(16 * 16 * 3, 65000), b(16 * 16 * 3, 65001);
   write_png16(dir / "a.png", 16, 16, a);
   write_png16(dir / "b.png", 16, 16, b);
   const Outcome r = compare(dir, (dir / "a.png").string() + " " + (dir / "b.png").string() +
                                      " --metric rmse --metric psnr --json");
   ASSERT_NE(r.rc, 2) << r.err;
   const auto j = nlohmann::json::parse(r.out);
-  EXPECT_NEAR(j.at("rmse").at("value").get<double>(), 1.0 / 65535, 1e-9);
-  EXPECT_NEAR(j.at("psnr").at("db").get<double>(), 20 * std::log10(65535.0), 1e-3);
+  EXPECT_NEAR(j.at("rmse").at("value").get<double>(), 1.0 / 65535, 1e-18);
+  EXPECT_NEAR(j.at("rmse").at("max_abs").get<double>(), 1.0 / 65535, 1e-18);
+  EXPECT_NEAR(j.at("psnr").at("db").get<double>(), 20 * std::log10(65535.0), 1e-9);
   // Resemble.js sees what a canvas sees: 8 bits, where these are the same.
   EXPECT_EQ(compare(dir, (dir / "a.png").string() + " " + (dir / "b.png").string()).rc, 0);
 }
