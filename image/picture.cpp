@@ -38,8 +38,8 @@ void widen_grey(FloatImage& f) {
 }
 
 bool is_image_name(const std::filesystem::path& name) {
-  static constexpr std::string_view kExtensions[] = {".png",  ".exr",  ".jpg", ".jpeg", ".tif",
-                                                     ".tiff", ".webp", ".hdr", ".tga",  ".bmp"};
+  static constexpr std::string_view kExtensions[] = {
+      ".png", ".exr", ".jpg", ".jpeg", ".tif", ".tiff", ".webp", ".hdr", ".tga", ".bmp", ".gif"};
   std::string ext = name.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });

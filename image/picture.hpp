@@ -35,7 +35,8 @@ void widen_grey(FloatImage& f);
 // The image formats aosuite reads: PNG and EXR itself, the others through OpenImageIO
 // (libaosuite_oiio.so, opened on the first such file). For messages.
 inline constexpr const char* kImageFormats =
-    "PNG, EXR, JPEG, TIFF (8, 16-bit, float), WebP, Radiance HDR, Targa, BMP";
+    "PNG, EXR, JPEG, TIFF (8, 16-bit, float), WebP, Radiance HDR, Targa, BMP, GIF (its first "
+    "frame)";
 // Whether a file name's extension is one of theirs (folder mode pairs these).
 bool is_image_name(const std::filesystem::path& name);
 

@@ -61,6 +61,8 @@ def cases(rng, out):
             (f"rgba_{i}.tga", Image.fromarray(rgba, "RGBA"), {}),
             (f"rle_{i}.tga", Image.fromarray(rgb), {"compression": "tga_rle"}),
             (f"top_{i}.tga", Image.fromarray(grey, "L"), {"orientation": 1}),
+            # GIF, through OpenImageIO: its first frame.
+            (f"pal_{i}.gif", Image.fromarray(rgb).quantize(16), {}),
         ]
         for name, img, opts in writes:
             path = out / name
@@ -209,6 +211,17 @@ def main():
         for j, m in sorted(mismatch.items()):
             if m.get("jpg") != m.get("png") or not m.get("jpg"):
                 failures.append(f"folder mode {j}.jpg: {m}")
+        # Folder mode pairs what compare reads: GIFs too.
+        for side in ("gif_a", "gif_e"):
+            (out / side).mkdir()
+            for p, _ in made:
+                if p.suffix == ".gif":
+                    (out / side / p.name).write_bytes(p.read_bytes())
+        run = subprocess.run([binary, "check", "--actual", str(out / "gif_a"), "--expected",
+                              str(out / "gif_e"), "--report", str(out / "r_gif")],
+                             capture_output=True, text=True, check=False)
+        if run.returncode != 0 or "4 images: 4 unchanged" not in run.stdout:
+            failures.append(f"folder mode on GIFs: exit {run.returncode}, {run.stdout[-300:]}")
         # 6. A file that is no image, or a cut JPEG: one line naming it, what is wrong and the
         # formats aosuite reads; exit 2.
         (out / "notes.jpg").write_text("not a JPEG")
