@@ -202,6 +202,16 @@ TEST_F(MeshFiles, TheSameShapeAtAnyScaleIsTheSameMeshFitted) {
   }
 }
 
+// assimp reads a coordinate the header does not declare as 0: a mesh flattened, drawn.
+TEST_F(MeshFiles, PlyVerticesWithoutACoordinateAreRefused) {
+  std::string ply = tetra_ascii_ply();
+  ply.replace(ply.find("property float z\n"), 17, "property float w\n");
+  const fs::path p = file("flat.ply", ply);
+  const std::string e = error_of([&] { load_mesh(p); });
+  expect_clean_message(e, p);
+  EXPECT_NE(e.find(":3: element 'vertex' has no property 'z'"), std::string::npos) << e;
+}
+
 // From bytes already read (a pinned scene file's, hashed): the path only names the file and its
 // format, and is never opened, so what was hashed is what is parsed.
 TEST_F(MeshFiles, BytesAlreadyReadAreParsedWithoutOpeningThePath) {
@@ -432,7 +442,7 @@ TEST_F(MeshFiles, AsciiPlyIsReadALineAnEntryAsAssimpReadsIt) {
   long_fraction.replace(long_fraction.find("\n1 0 0\n"), 7, "\n1 0 0.00000000000000000000000\n");
   EXPECT_EQ(load_mesh(file("fraction.ply", long_fraction)).positions.size(), 4u);
   std::string fuzzed = std::string("ply\nformat ascii 1.0\nelement vertex 3\n") +
-                       "property float x\nproperty float z\nproperty float nx\n" +
+                       "property float x\nproperty float z\nproperty float y\n" +
                        "property list uchar uint vertex_indices\nend_header\n" +
                        "0 0 0 0 0 1\n1 0 0 0777777777777777777777777 0 1\n0 1 0 0 0 1\n";
   for (const auto& [name, text, expected] :
@@ -713,8 +723,9 @@ TEST_F(SceneFiles, ViewsAreRefusedAsTheRendererRefusesThem) {
   const std::string view = std::string(kView);
   EXPECT_NE(error(box + view + "near = 1e-300\n", 7).find("near is too small"), std::string::npos);
   EXPECT_NE(error(box + view + "near = 1e-40\n", 7).find("near is too small"), std::string::npos);
-  EXPECT_NE(error(box + view + "fovy_degrees = 180\n", 7).find("fovy_degrees must be in [0.1, 180)"),
-            std::string::npos);
+  EXPECT_NE(
+      error(box + view + "fovy_degrees = 180\n", 7).find("fovy_degrees must be in [0.1, 180)"),
+      std::string::npos);
   EXPECT_NE(error(box + view + "fovy_degrees = -1\n", 7).find("fovy_degrees"), std::string::npos);
   EXPECT_NE(error(box + view + "fovy_degrees = 1e-10\n", 7).find("fovy_degrees must be in [0.1"),
             std::string::npos);

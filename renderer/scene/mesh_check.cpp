@@ -39,6 +39,7 @@ std::string_view as_text(std::span<const unsigned char> bytes) {
 struct PlyProperty {
   int size = 0;        // bytes of a scalar, or of each list item
   int count_size = 0;  // bytes of a list's length; 0 for a scalar
+  std::string name;
 };
 struct PlyElement {
   std::string name;
@@ -106,13 +107,22 @@ PlyHeader parse_ply_header(Tokens& in) {
       } else {
         p.size = type(t);
       }
-      in.rest_of_line();  // the property's name
+      p.name = std::string(in.next());
+      in.rest_of_line();
       h.elements.back().properties.push_back(p);
     } else {
       in.fail(fmt::format("unexpected '{}' in the header", key.substr(0, 64)));
     }
   }
   if (!has_format) in.fail("no format line in the header");
+  // assimp reads a missing coordinate as 0: a mesh flattened onto a plane, drawn.
+  for (const PlyElement& e : h.elements) {
+    if (e.name != "vertex") continue;
+    for (const char* axis : {"x", "y", "z"}) {
+      if (std::ranges::none_of(e.properties, [&](const PlyProperty& p) { return p.name == axis; }))
+        in.fail_at(e.line, fmt::format("element 'vertex' has no property '{}'", axis));
+    }
+  }
   in.rest_of_line();
   h.body = in.offset() + 1;
   return h;
