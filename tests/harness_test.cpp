@@ -124,7 +124,7 @@ TEST_F(SuiteFile, MalformedImageCasesNameFileLineAndReason) {
   EXPECT_NE(error_of(head + "files = [\"a.png\"]\ncommand = [\"true\"]\n").find("command or files"),
             std::string::npos);
   EXPECT_NE(
-      error_of(head + "files = [\"a.gif\"]\n").find("s.toml:3:9: 'a.gif' is not an image file"),
+      error_of(head + "files = [\"a.svg\"]\n").find("s.toml:3:9: 'a.svg' is not an image file"),
       std::string::npos);
   EXPECT_NE(error_of(head + "files = [\"a/x.png\", \"b/x.png\"]\n").find("two images named 'x'"),
             std::string::npos);
